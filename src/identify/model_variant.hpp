@@ -1,0 +1,135 @@
+// The one interface between identification and physics: a model variant maps a parameter vector
+// and one row of kinematics to predicted channels. Every variant reads the same parameter layout;
+// parameters a variant does not use are simply never read (and held fixed by the fitter).
+#pragma once
+
+#include <array>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "model/approximants.hpp"
+#include "model/coefficients.hpp"
+#include "model/exact_model.hpp"
+#include "model/pressure_law.hpp"
+
+namespace frictionid {
+
+enum class ModelKind { Seed, Corrected, Exact };
+
+enum ParamIndex : int { kF = 0, kKappa, kH, kA, kB, kM, kN, kP0, kBTilde, kParamCount };
+
+inline const std::array<const char*, kParamCount>& param_names() {
+  static const std::array<const char*, kParamCount> names = {"f", "kappa", "h",  "a",      "b",
+                                                             "m", "n",     "p0", "b_tilde"};
+  return names;
+}
+
+inline std::optional<int> param_index(const std::string& name) {
+  for (int i = 0; i < kParamCount; ++i)
+    if (name == param_names()[i]) return i;
+  return std::nullopt;
+}
+
+inline const char* model_name(ModelKind k) {
+  switch (k) {
+    case ModelKind::Seed:
+      return "seed";
+    case ModelKind::Corrected:
+      return "corrected";
+    case ModelKind::Exact:
+      return "exact";
+  }
+  return "?";
+}
+
+inline std::optional<ModelKind> parse_model_kind(const std::string& s) {
+  if (s == "seed") return ModelKind::Seed;
+  if (s == "corrected") return ModelKind::Corrected;
+  if (s == "exact") return ModelKind::Exact;
+  return std::nullopt;
+}
+
+// The parameters a variant reads, in report order. n appears for exact only with power:N.
+inline std::vector<int> model_parameters(ModelKind kind, model::PressureKind law) {
+  switch (kind) {
+    case ModelKind::Seed:
+      return {kF, kKappa, kH, kA, kB, kM};
+    case ModelKind::Corrected:
+      return {kF, kKappa, kH, kA, kBTilde, kM, kP0};
+    case ModelKind::Exact:
+      if (law == model::PressureKind::Power) return {kF, kKappa, kH, kN};
+      return {kF, kKappa, kH};
+  }
+  return {};
+}
+
+// Values the pressure law implies for every parameter (f = 1, kappa = 1, h = 0 unless given):
+// a user's --param overrides them; coefficients follow the given kappa.
+inline std::array<double, kParamCount> default_parameters(const model::PressureLaw<double>& law,
+                                                          double f = 1.0, double kappa = 1.0,
+                                                          double h = 0.0) {
+  const auto c = model::coefficients(model::law_moments(law), kappa);
+  std::array<double, kParamCount> p{};
+  p[kF] = f;
+  p[kKappa] = kappa;
+  p[kH] = h;
+  p[kA] = c.a;
+  p[kB] = c.b;
+  p[kM] = c.m;
+  p[kN] = law.kind == model::PressureKind::Power ? law.n : 0.5;
+  p[kP0] = c.p0;
+  p[kBTilde] = c.b_tilde;
+  return p;
+}
+
+// Evaluates one variant for a fixed parameter vector; construct once, call per row.
+template <typename T>
+class ModelEvaluator {
+ public:
+  ModelEvaluator(ModelKind kind, const model::PressureLaw<double>& law, const T* params)
+      : kind_(kind), law_(promote(law, params)), exact_(exact_params(params), law_) {
+    if (kind_ != ModelKind::Exact) {
+      shape_ = model::approximant_shape(model::law_moments(law_));
+      approx_ = {params[kF],
+                 params[kKappa],
+                 params[kH],
+                 params[kA],
+                 kind == ModelKind::Seed ? params[kB] : params[kBTilde],
+                 params[kM],
+                 params[kP0]};
+    }
+  }
+
+  model::Resultants<T> operator()(const model::Kinematics& k) const {
+    switch (kind_) {
+      case ModelKind::Seed:
+        return model::approximant_resultants(model::ApproximantForm::Seed, approx_, shape_, k);
+      case ModelKind::Corrected:
+        return model::approximant_resultants(model::ApproximantForm::Corrected, approx_, shape_, k);
+      case ModelKind::Exact:
+        return exact_(k);
+    }
+    throw std::logic_error("unknown model kind");
+  }
+
+ private:
+  static model::PressureLaw<T> promote(const model::PressureLaw<double>& law, const T* params) {
+    model::PressureLaw<T> out;
+    out.kind = law.kind;
+    out.table = law.table;
+    out.n = law.kind == model::PressureKind::Power ? params[kN] : T(law.n);
+    return out;
+  }
+  static model::FrictionParams<T> exact_params(const T* p) { return {p[kF], p[kKappa], p[kH]}; }
+
+  ModelKind kind_;
+  model::PressureLaw<T> law_;
+  model::ExactModel<T> exact_;
+  model::ApproximantShape<T> shape_{};
+  model::ApproximantParams<T> approx_{};
+};
+
+}  // namespace frictionid

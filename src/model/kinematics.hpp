@@ -1,0 +1,39 @@
+// One operating point and the resultants the models predict for it (physics.md §1).
+#pragma once
+
+#include <cmath>
+
+namespace frictionid::model {
+
+// Slip velocity of the spot's centre, spin about the normal, normal load, contact radius.
+// Kinematics are data, never identified, so they stay double for every scalar type.
+struct Kinematics {
+  double v_x = 0.0, v_y = 0.0, omega = 0.0, N = 1.0, R = 1.0;
+};
+
+// Resistance convention (physics.md §1): T = -∫tau dS, M_z = -∫(r x tau).e3 dS,
+// M_roll = ∫ sigma x dS (about y), N = ∫ sigma dS.
+template <typename T>
+struct Resultants {
+  T T_x, T_y, M_z, M_roll, N;
+};
+
+// The slip geometry shared by every model: speed, direction, spin sign and eps = v/(|omega| R).
+struct SlipGeometry {
+  double v, cos_alpha, sin_alpha, spin_sign, eps;  // eps = +inf for omega = 0
+  bool at_rest;                                    // v = omega = 0: friction is indeterminate
+};
+
+inline SlipGeometry slip_geometry(const Kinematics& k) {
+  SlipGeometry g;
+  g.v = std::hypot(k.v_x, k.v_y);
+  g.cos_alpha = g.v > 0.0 ? k.v_x / g.v : 1.0;  // pure spin: any alpha gives the same forces
+  g.sin_alpha = g.v > 0.0 ? k.v_y / g.v : 0.0;
+  g.spin_sign = k.omega > 0.0 ? 1.0 : (k.omega < 0.0 ? -1.0 : 0.0);
+  const double u = std::fabs(k.omega) * k.R;
+  g.eps = u > 0.0 ? g.v / u : HUGE_VAL;
+  g.at_rest = g.v == 0.0 && k.omega == 0.0;
+  return g;
+}
+
+}  // namespace frictionid::model
