@@ -1,0 +1,32 @@
+// The global stage: an NLopt derivative-free global algorithm over a box, which also keeps an
+// archive of every point it evaluated so that the best *distinct* points can seed local fits.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace frictionid {
+
+struct GlobalSearchProblem {
+  std::vector<double> lower, upper;                // box in the search coordinates
+  std::function<double(const double*)> objective;  // finite, or +inf for unusable points
+};
+
+struct GlobalSearchOutcome {
+  std::vector<std::vector<double>> starts;  // best distinct points, best first
+  std::vector<double> start_values;
+  long evaluations = 0;
+  std::string algorithm;
+};
+
+// Algorithms: "crs2" (NLopt GN_CRS2_LM, the default), "isres", "direct", "esch", "random".
+// Deterministic for a given seed (NLopt's generator is seeded; one thread).
+GlobalSearchOutcome global_search(const GlobalSearchProblem& problem, const std::string& algorithm,
+                                  long max_evaluations, unsigned long long seed, int starts,
+                                  const std::atomic<bool>* cancel = nullptr);
+
+std::vector<std::string> global_algorithms();
+
+}  // namespace frictionid

@@ -1,0 +1,97 @@
+// Whitened, per-row robustified residuals of a model against a dataset (design.md "report.json"):
+// r = (model - measured)/sigma per channel; a robust loss rho acts on each row's squared norm s
+// by scaling the row's residuals with sqrt(rho(s)/s), so that the sum of squares is sum rho(s_i)
+// (per row, not per residual block). Templated on the scalar type: double or a Ceres Jet.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "identify/dataset.hpp"
+#include "identify/fit_settings.hpp"
+#include "identify/model_variant.hpp"
+
+namespace frictionid {
+
+// The rows of one residual block, with their whitening already resolved.
+struct ResidualRows {
+  const Dataset* data = nullptr;
+  std::vector<Channel> channels;              // fitted channels (output order per row)
+  std::array<double, kChannelCount> scale{};  // per-channel sigma when no sigma column
+  std::size_t begin = 0, end = 0;             // rows [begin, end)
+
+  std::size_t residual_count() const { return (end - begin) * channels.size(); }
+  double inverse_sigma(Channel c, std::size_t row) const {
+    const int ci = static_cast<int>(c);
+    if (!data->present[ci][row]) return 0.0;  // unmeasured: residual held at 0
+    return data->has_sigma(c) ? 1.0 / data->sigma[ci][row] : 1.0 / scale[ci];
+  }
+};
+
+template <typename T>
+T robust_row_factor(const T& s, LossKind loss, double scale) {
+  using std::log;
+  using std::sqrt;
+  if (loss == LossKind::None || !(s > 1e-300)) return T(1);
+  const double c2 = scale * scale;
+  T rho;
+  switch (loss) {
+    case LossKind::Huber:
+      if (s <= c2) return T(1);
+      rho = T(2 * scale) * sqrt(s) - T(c2);
+      break;
+    case LossKind::Cauchy:
+      rho = T(c2) * log(T(1) + s / c2);
+      break;
+    case LossKind::SoftL1:
+      rho = T(2 * c2) * (sqrt(T(1) + s / c2) - T(1));
+      break;
+    default:
+      return T(1);
+  }
+  return sqrt(rho / s);
+}
+
+inline double robust_rho(double s, LossKind loss, double scale) {
+  const double f = robust_row_factor(s, loss, scale);
+  return f * f * s;
+}
+
+// Writes residual_count() residuals for params; returns false if the model produced a
+// non-finite value (Ceres then rejects the step instead of accepting NaN).
+template <typename T>
+bool evaluate_residuals(const ResidualRows& rows, ModelKind kind,
+                        const model::PressureLaw<double>& law, LossKind loss, double loss_scale,
+                        const T* params, T* out) {
+  using std::isfinite;
+  const ModelEvaluator<T> model(kind, law, params);
+  const Dataset& d = *rows.data;
+  const std::size_t nc = rows.channels.size();
+  for (std::size_t i = rows.begin; i < rows.end; ++i) {
+    const model::Kinematics k{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]};
+    const model::Resultants<T> r = model(k);
+    T* row_out = out + (i - rows.begin) * nc;
+    T s = T(0);
+    for (std::size_t j = 0; j < nc; ++j) {
+      const Channel c = rows.channels[j];
+      const int ci = static_cast<int>(c);
+      const T& pred = c == Channel::T_x   ? r.T_x
+                      : c == Channel::T_y ? r.T_y
+                      : c == Channel::M_z ? r.M_z
+                                          : r.M_roll;
+      const double w = rows.inverse_sigma(c, i);
+      row_out[j] = w == 0.0 ? T(0) : (pred - d.value[ci][i]) * w;
+      s += row_out[j] * row_out[j];
+    }
+    if (loss != LossKind::None) {
+      const T f = robust_row_factor(s, loss, loss_scale);
+      for (std::size_t j = 0; j < nc; ++j) row_out[j] *= f;
+    }
+    for (std::size_t j = 0; j < nc; ++j)
+      if (!isfinite(row_out[j])) return false;
+  }
+  return true;
+}
+
+}  // namespace frictionid

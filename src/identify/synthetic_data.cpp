@@ -1,0 +1,88 @@
+#include "identify/synthetic_data.hpp"
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+namespace frictionid {
+
+NormalStream::NormalStream(std::uint64_t seed) : index_(0) {
+  std::mt19937_64 rng(seed);
+  for (auto& s : state_) s = rng();
+}
+
+std::uint64_t NormalStream::next_u64() {
+  if (index_ == 312) {
+    // Refill from a generator seeded by the last block: keeps the stream deterministic.
+    std::mt19937_64 rng(state_[311]);
+    for (auto& s : state_) s = rng();
+    index_ = 0;
+  }
+  return state_[index_++];
+}
+
+double NormalStream::next() {
+  if (has_spare_) {
+    has_spare_ = false;
+    return spare_;
+  }
+  double u, v, s;
+  do {
+    u = 2.0 * (static_cast<double>(next_u64() >> 11) * 0x1.0p-53) - 1.0;
+    v = 2.0 * (static_cast<double>(next_u64() >> 11) * 0x1.0p-53) - 1.0;
+    s = u * u + v * v;
+  } while (s >= 1.0 || s == 0.0);
+  const double f = std::sqrt(-2.0 * std::log(s) / s);
+  spare_ = v * f;
+  has_spare_ = true;
+  return u * f;
+}
+
+Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
+                         const std::array<double, kParamCount>& params,
+                         const SyntheticDesign& design, const NoiseSpec& noise,
+                         std::uint64_t seed) {
+  if (design.rows == 0) throw std::invalid_argument("the design has no rows");
+  if (!(design.eps_min > 0.0) || !(design.eps_max >= design.eps_min))
+    throw std::invalid_argument("the eps range must satisfy 0 < eps_min <= eps_max");
+  if (design.loads.empty() || design.slip_angles.empty())
+    throw std::invalid_argument("the design needs at least one load and one slip angle");
+  const ModelEvaluator<double> model(kind, law, params.data());
+  NormalStream normal(seed);
+  Dataset d;
+  d.source = "generated";
+  const std::size_t n = design.rows;
+  const double log_lo = std::log(design.eps_min), log_hi = std::log(design.eps_max);
+  for (std::size_t i = 0; i < n; ++i) {
+    // A golden-ratio sequence spreads eps evenly in log scale whatever the row count, and
+    // interleaves loads, spin signs and slip angles so that any subsample sees them all.
+    const double u =
+        n == 1 ? 0.5 : std::fmod(0.5 + static_cast<double>(i) * 0.6180339887498949, 1.0);
+    const double eps = std::exp(log_lo + u * (log_hi - log_lo));
+    const double load = design.loads[i % design.loads.size()];
+    const double omega = (i / design.loads.size()) % 2 == 0 ? design.spin : -design.spin;
+    const double alpha = design.slip_angles[(i / 2) % design.slip_angles.size()];
+    double v = eps * design.spin * design.contact_radius;
+    if (design.negative_slip && i % 4 == 3) v = -v;
+    const model::Kinematics k{v * std::cos(alpha), v * std::sin(alpha), omega, load,
+                              design.contact_radius};
+    const auto r = model(k);
+    d.line.push_back(i + 2);
+    d.v_x.push_back(k.v_x);
+    d.v_y.push_back(k.v_y);
+    d.omega.push_back(k.omega);
+    d.N.push_back(k.N);
+    d.R.push_back(k.R);
+    const double clean[kChannelCount] = {r.T_x, r.T_y, r.M_z, r.M_roll};
+    for (int c = 0; c < kChannelCount; ++c) {
+      const double sd = std::hypot(noise.relative * clean[c], noise.absolute);
+      const double z = normal.next();
+      d.value[c].push_back(clean[c] + sd * z);
+      d.present[c].push_back(1);
+      if (noise.write_sigma) d.sigma[c].push_back(sd > 0.0 ? sd : 1e-300);
+    }
+  }
+  return d;
+}
+
+}  // namespace frictionid
