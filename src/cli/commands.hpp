@@ -2,6 +2,7 @@
 // Each returns the process exit code (exit_codes.hpp).
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -24,5 +25,39 @@ struct EvalOptions {
   std::string input, output, columns;
 };
 int run_eval(const EvalOptions& o);
+
+struct GenerateOptions {
+  std::string model = "exact";
+  std::string pressure = "hertz";
+  std::string params;
+  std::size_t rows = 600;
+  double noise = 0.0;      // relative standard deviation
+  double noise_abs = 0.0;  // absolute standard deviation [channel units]
+  bool sigma_columns = false;
+  unsigned long long seed = 1;
+  std::string output, truth;
+  double eps_min = 1e-2, eps_max = 1e2;
+  std::string loads = "2000,4000,6000";
+  double R = 0.05, spin = 2.0;
+  std::string slip_angles_deg = "0";
+  bool forward_only = false;
+};
+int run_generate(const GenerateOptions& o);
+
+struct FitOptions {
+  std::string data;
+  std::string model = "seed";
+  std::string pressure = "hertz";
+  std::string fix, bounds, initial, loss = "none", channels, columns;
+  int starts = 4;
+  unsigned long long seed = 1;
+  long global_evaluations = 3000;
+  std::size_t global_subsample = 400;
+  bool no_global = false;
+  int threads = 1;
+  std::string report;
+  bool progress = false;
+};
+int run_fit(const FitOptions& o);
 
 }  // namespace frictionid::cli

@@ -44,6 +44,56 @@ void add_eval(CLI::App& app, EvalOptions& o) {
   c->add_option("--columns", o.columns, "rename columns: canonical=header,...");
 }
 
+void add_generate(CLI::App& app, GenerateOptions& o) {
+  auto* c = app.add_subcommand("generate", "Make a synthetic dataset from a model, with its truth");
+  c->add_option("--model", o.model, "seed, corrected or exact")->capture_default_str();
+  c->add_option("--pressure", o.pressure, kLawHelp)->capture_default_str();
+  c->add_option("--param", o.params, "true parameters f=..,kappa=..,h=..[,a=..,...]");
+  c->add_option("--rows", o.rows, "number of rows")->capture_default_str();
+  c->add_option("--noise", o.noise, "relative Gaussian noise (fraction of each value)")
+      ->capture_default_str();
+  c->add_option("--noise-abs", o.noise_abs, "absolute Gaussian noise [channel units]")
+      ->capture_default_str();
+  c->add_flag("--sigma-columns", o.sigma_columns, "write the noise sigma as sigma_* columns");
+  c->add_option("--seed", o.seed, "random seed")->capture_default_str();
+  c->add_option("--output", o.output, "CSV file to write")->required();
+  c->add_option("--truth", o.truth, "JSON file for the true parameters and design");
+  c->add_option("--eps-min", o.eps_min, "smallest eps = v/(|omega| R)")->capture_default_str();
+  c->add_option("--eps-max", o.eps_max, "largest eps")->capture_default_str();
+  c->add_option("--loads", o.loads, "normal loads N [N], comma separated")->capture_default_str();
+  c->add_option("--R", o.R, "contact radius [m]")->capture_default_str();
+  c->add_option("--spin", o.spin, "|omega| [rad/s]; signs alternate")->capture_default_str();
+  c->add_option("--slip-angles", o.slip_angles_deg, "slip directions [deg], comma separated")
+      ->capture_default_str();
+  c->add_flag("--forward-only", o.forward_only, "no rows with backward slip (v_x < 0)");
+}
+
+void add_fit(CLI::App& app, FitOptions& o) {
+  auto* c =
+      app.add_subcommand("fit", "Identify a model's parameters from a CSV and write a report");
+  c->add_option("data", o.data, "dataset CSV")->required();
+  c->add_option("--model", o.model, "seed, corrected or exact")->capture_default_str();
+  c->add_option("--pressure", o.pressure, kLawHelp)->capture_default_str();
+  c->add_option("--fix", o.fix, "hold parameters fixed: name=value,...");
+  c->add_option("--bounds", o.bounds, "parameter bounds: name=lo:hi,...");
+  c->add_option("--param", o.initial, "initial values (used with --no-global): name=value,...");
+  c->add_option("--loss", o.loss, "none, huber:S, cauchy:S or soft_l1:S (per row, S in sigmas)")
+      ->capture_default_str();
+  c->add_option("--starts", o.starts, "local fits from the best distinct global points")
+      ->capture_default_str();
+  c->add_option("--seed", o.seed, "seed of the global stage")->capture_default_str();
+  c->add_option("--global-evaluations", o.global_evaluations, "budget of the global stage")
+      ->capture_default_str();
+  c->add_option("--global-subsample", o.global_subsample, "rows the global stage sees")
+      ->capture_default_str();
+  c->add_flag("--no-global", o.no_global, "skip the global stage; start from --param values");
+  c->add_option("--channels", o.channels, "channels to fit, e.g. T_x,M_z (default: all measured)");
+  c->add_option("--columns", o.columns, "rename columns: canonical=header,...");
+  c->add_option("--threads", o.threads, "solver threads")->capture_default_str();
+  c->add_option("--report", o.report, "directory for report.json, report.md and plots")->required();
+  c->add_flag("--progress", o.progress, "progress line on stderr (default: when it is a terminal)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -56,6 +106,10 @@ int main(int argc, char** argv) {
   EvalOptions eval;
   add_coefficients(app, coefficients);
   add_eval(app, eval);
+  GenerateOptions generate;
+  FitOptions fit;
+  add_generate(app, generate);
+  add_fit(app, fit);
 
   try {
     app.parse(argc, argv);
@@ -73,6 +127,8 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("coefficients")) return run_coefficients(coefficients);
     if (app.got_subcommand("eval")) return run_eval(eval);
+    if (app.got_subcommand("generate")) return run_generate(generate);
+    if (app.got_subcommand("fit")) return run_fit(fit);
   } catch (const frictionid::InputError& e) {
     std::fprintf(stderr, "frictionid: error: %s\n", e.what());
     return kExitBadInput;

@@ -520,6 +520,7 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
          s.model == ModelKind::Seed ? law_c.b : law_c.b_tilde}};
     for (const auto& [i, v] : implied) {
       if (!is_free(i) || !(std::fabs(x[i] - v) > 0.05 * v)) continue;
+      if (std::find(undetermined.begin(), undetermined.end(), i) != undetermined.end()) continue;
       res.warnings.push_back(
           std::string(param_names()[i]) + " = " + fmt_g(x[i]) + " differs from the value " +
           fmt_g(v) + " that the " + s.law_label +

@@ -258,7 +258,7 @@ ColumnMap parse_column_map(const std::string& spec) {
   return map;
 }
 
-Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns) {
+Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns, bool require_channels) {
   // Which header name each slot is looked up under.
   Column col[kSlotCount];
   for (int s = 0; s < kSlotCount; ++s) col[s].header = kCanonical[s];
@@ -366,7 +366,7 @@ Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns) {
     {
       bool any_channel = false;
       for (int s = kFirstChannel; s < kFirstSigma; ++s) any_channel |= col[s].field >= 0;
-      if (!any_channel) {
+      if (!any_channel && require_channels) {
         std::string hint;
         std::size_t column = 0;
         hint = suggestion(kFirstChannel, kFirstSigma, column);
@@ -462,7 +462,7 @@ Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns) {
                                shown(fields[static_cast<std::size_t>(col[q].field)]) +
                                "; expected " + kMeaning[q]);
       }
-      if (!any)
+      if (!any && require_channels)
         throw InputError(path, line_no, static_cast<std::size_t>(first_channel_field) + 1,
                          "no measured channel in this row; expected a value in at least one of "
                          "the channel columns");

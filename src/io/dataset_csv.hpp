@@ -43,6 +43,8 @@ ColumnMap parse_column_map(const std::string& spec);
 // Reads and validates the file; throws InputError on any rejected input (including a file that
 // cannot be opened). A canonical name that is remapped is looked up only under its new header
 // name; a column literally named after it is then ignored.
-Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns = {});
+// require_channels = false reads kinematics only (eval --input): no channel column is needed.
+Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns = {},
+                         bool require_channels = true);
 
 }  // namespace frictionid

@@ -1,0 +1,129 @@
+// Runs the built executable (path from FRICTIONID_EXE, set by ctest) on valid and invalid input
+// and checks output and exit codes.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int code;
+  std::string out;  // stdout and stderr together
+};
+
+RunResult run(const std::string& args) {
+  const char* exe = std::getenv("FRICTIONID_EXE");
+  if (!exe) return {-1, "FRICTIONID_EXE not set"};
+  const std::string cmd = std::string(exe) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d =
+      fs::temp_directory_path() / ("frictionid_cli_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+TEST(Cli, CoefficientsForHertzPrintTheClosedFormValues) {
+  const RunResult r = run("coefficients --pressure hertz");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["a"].get<double>(), std::pow(8.0 / (3.0 * M_PI), 2), 1e-14);
+  EXPECT_NEAR(j["b"].get<double>(), 25.0, 1e-12);
+  EXPECT_NEAR(j["mu_M"].get<double>(), 3.0 * M_PI / 16.0, 1e-15);
+  EXPECT_TRUE(j["consistency"]["all"].get<bool>());
+  for (const char* key : {"m0", "m1", "m2", "m3", "m", "b_tilde", "p0", "M_roll_per_hNR"})
+    EXPECT_TRUE(j.contains(key)) << key;
+}
+
+TEST(Cli, CoefficientsTableFormatIsForPeople) {
+  const RunResult r = run("coefficients --pressure parabolic --format table");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("0.5625"), std::string::npos);  // a = 9/16
+}
+
+TEST(Cli, BadPressureLawKappaOrExponentExitWithCodeTwoAndOneLine) {
+  for (const char* args :
+       {"coefficients --pressure foo", "coefficients --kappa 0", "coefficients --kappa -1",
+        "coefficients --pressure power:-1", "coefficients --pressure power:abc",
+        "coefficients --kappa abc", "coefficients --pressure table:/nonexistent/file.csv"}) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << args << ": " << r.out;
+  }
+}
+
+TEST(Cli, BadPressureTableNamesFileLineAndColumn) {
+  const fs::path d = temp_dir("table");
+  std::ofstream(d / "t.csv") << "rho,sigma0\n0,1\n0.5,0.8\n0.4,0.5\n";
+  const RunResult r = run("coefficients --pressure table:" + (d / "t.csv").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("t.csv:4:1"), std::string::npos) << r.out;
+  fs::remove_all(d);
+}
+
+TEST(Cli, EvalPrintsTheResultantsAsJson) {
+  const RunResult r =
+      run("eval --model exact --pressure hertz --param f=0.8,kappa=1.2,h=0.1 "
+          "--vx 0.3 --omega 2 --R 0.1 --N 1000");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  // M_roll = h N R m3/(2 m1) = 0.1 * 1000 * 0.1 * 0.2 for Hertz.
+  EXPECT_NEAR(j["M_roll"].get<double>(), 2.0, 1e-12);
+  EXPECT_EQ(j["N"].get<double>(), 1000.0);
+  EXPECT_GT(j["T_x"].get<double>(), 0.0);
+  EXPECT_LT(j["T_x"].get<double>(), 0.8 * 1000.0);
+}
+
+TEST(Cli, GenerateThenFitRecoversTheTruthAndWritesTheReport) {
+  const fs::path d = temp_dir("fit");
+  const std::string csv = (d / "data.csv").string();
+  RunResult g =
+      run("generate --model seed --pressure hertz --param f=0.85,kappa=1.3,h=0.12 --rows 300 "
+          "--output " +
+          csv + " --truth " + (d / "truth.json").string());
+  ASSERT_EQ(g.code, 0) << g.out;
+  const RunResult f = run("fit " + csv + " --model seed --report " + (d / "rep").string());
+  ASSERT_EQ(f.code, 0) << f.out;
+  std::ifstream in(d / "rep" / "report.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_NEAR(j["parameters"]["f"]["value"].get<double>(), 0.85, 1e-9);
+  EXPECT_NEAR(j["parameters"]["h"]["value"].get<double>(), 0.12, 1e-9);
+  EXPECT_TRUE(fs::exists(d / "rep" / "report.md"));
+  fs::remove_all(d);
+}
+
+TEST(Cli, FitOnAMissingFileOrUnknownParameterFailsWithoutAReport) {
+  const fs::path d = temp_dir("bad");
+  RunResult r = run("fit /nonexistent.csv --model seed --report " + (d / "rep").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  const std::string csv = (d / "x.csv").string();
+  ASSERT_EQ(run("generate --model seed --rows 20 --output " + csv).code, 0);
+  r = run("fit " + csv + " --model seed --fix n=1 --report " + (d / "rep").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("no parameter 'n'"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(d / "rep"));
+  fs::remove_all(d);
+}
+
+}  // namespace

@@ -1,0 +1,166 @@
+#include "identify/fitter.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "identify/synthetic_data.hpp"
+#include "io/report_writer.hpp"
+
+namespace frictionid {
+namespace {
+
+using Law = model::PressureLaw<double>;
+
+// Matched digits as Ceres' examples/nist.cc scores them: -log10 of the relative error.
+double matched_digits(double estimate, double truth) {
+  const double rel = std::fabs(estimate - truth) / std::fabs(truth);
+  return rel == 0.0 ? 17.0 : -std::log10(rel);
+}
+
+std::array<double, kParamCount> truth_params(const Law& law) {
+  auto p = default_parameters(law, 0.85, 1.3, 0.12);
+  p[kA] = 0.9;
+  p[kB] = 20.0;
+  p[kM] = 7.0;
+  p[kBTilde] = 3.0;
+  return p;
+}
+
+FitSettings settings_for(ModelKind kind, const Law& law) {
+  FitSettings s;
+  s.model = kind;
+  s.law = law;
+  s.params = default_parameter_settings(law);
+  return s;
+}
+
+void expect_recovery(ModelKind kind, const Law& law, const std::array<double, kParamCount>& truth,
+                     double digits) {
+  const Dataset d = generate_dataset(kind, law, truth, SyntheticDesign{}, NoiseSpec{}, 5);
+  const FitResult r = Fitter(settings_for(kind, law)).fit(d);
+  for (const auto& p : r.parameters) {
+    const int i = *param_index(p.name);
+    EXPECT_GE(matched_digits(p.value, truth[i]), digits) << p.name << " = " << p.value;
+  }
+  EXPECT_TRUE(r.solver.converged);
+}
+
+TEST(Fitter, NoiseFreeSeedDataRecoversEveryParameterToTenDigitsFromTheBoundsAlone) {
+  expect_recovery(ModelKind::Seed, Law::hertz(), truth_params(Law::hertz()), 10.0);
+}
+
+TEST(Fitter, NoiseFreeCorrectedDataRecoversEveryParameterToTenDigitsFromTheBoundsAlone) {
+  expect_recovery(ModelKind::Corrected, Law::parabolic(), truth_params(Law::parabolic()), 10.0);
+}
+
+TEST(Fitter, NoiseFreeExactDataRecoversFrictionTiltAndPressureExponentToEightDigits) {
+  const Law law = Law::power(1.7);
+  auto truth = default_parameters(law, 0.85, 1.3, 0.12);
+  SyntheticDesign design;
+  design.rows = 200;
+  const Dataset d = generate_dataset(ModelKind::Exact, law, truth, design, NoiseSpec{}, 5);
+  FitSettings s = settings_for(ModelKind::Exact, Law::power(1.0));  // n starts elsewhere
+  const FitResult r = Fitter(s).fit(d);
+  ASSERT_EQ(r.parameters.size(), 4u);
+  for (const auto& p : r.parameters)
+    EXPECT_GE(matched_digits(p.value, truth[*param_index(p.name)]), 8.0) << p.name;
+}
+
+// With 1 % noise the reported standard errors must be honest: every parameter within 4 of them.
+TEST(Fitter, OnePercentNoiseLeavesEveryParameterWithinFourStandardErrorsForTwentySeeds) {
+  const Law law = Law::hertz();
+  const auto truth = truth_params(law);
+  SyntheticDesign design;
+  design.rows = 300;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const Dataset d =
+        generate_dataset(ModelKind::Seed, law, truth, design, NoiseSpec{0.01, 0.0, false}, seed);
+    FitSettings s = settings_for(ModelKind::Seed, law);
+    s.seed = seed;
+    const FitResult r = Fitter(s).fit(d);
+    for (const auto& p : r.parameters) {
+      ASSERT_TRUE(p.std_error.has_value()) << p.name;
+      EXPECT_LE(std::fabs(p.value - truth[*param_index(p.name)]), 4.0 * *p.std_error)
+          << "seed " << seed << " " << p.name << " = " << p.value << " +- " << *p.std_error;
+    }
+  }
+}
+
+TEST(Fitter, DataWithoutLateralForceOrRollingTorqueNamesHAndBAsUndetermined) {
+  const Law law = Law::hertz();
+  const Dataset d =
+      generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{}, NoiseSpec{}, 5);
+  FitSettings s = settings_for(ModelKind::Seed, law);
+  s.channels = {Channel::T_x, Channel::M_z};
+  const FitResult r = Fitter(s).fit(d);
+  bool warned = false;
+  for (const auto& w : r.warnings)
+    if (w.find("not determined") != std::string::npos && w.find("h and b") != std::string::npos)
+      warned = true;
+  EXPECT_TRUE(warned);
+  for (const auto& p : r.parameters) {
+    if (p.name == "h" || p.name == "b")
+      EXPECT_FALSE(p.std_error.has_value()) << p.name;
+    else
+      EXPECT_TRUE(p.std_error.has_value()) << p.name;
+  }
+}
+
+TEST(Fitter, AParameterPinnedAtABoundIsFlagged) {
+  const Law law = Law::hertz();
+  const Dataset d =
+      generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{}, NoiseSpec{}, 5);
+  FitSettings s = settings_for(ModelKind::Seed, law);
+  s.params[kF].upper = 0.8;  // truth 0.85 lies outside
+  const FitResult r = Fitter(s).fit(d);
+  for (const auto& p : r.parameters)
+    if (p.name == "f") {
+      EXPECT_TRUE(p.at_bound);
+    }
+}
+
+TEST(Fitter, FixedParametersKeepTheirValueAndHaveNoStandardError) {
+  const Law law = Law::hertz();
+  const auto truth = truth_params(law);
+  const Dataset d =
+      generate_dataset(ModelKind::Seed, law, truth, SyntheticDesign{}, NoiseSpec{}, 5);
+  FitSettings s = settings_for(ModelKind::Seed, law);
+  s.params[kKappa].fixed = true;
+  s.params[kKappa].initial = truth[kKappa];
+  const FitResult r = Fitter(s).fit(d);
+  for (const auto& p : r.parameters) {
+    if (p.name != "kappa") continue;
+    EXPECT_TRUE(p.fixed);
+    EXPECT_EQ(p.value, truth[kKappa]);
+    EXPECT_FALSE(p.std_error.has_value());
+  }
+}
+
+TEST(Fitter, SameInputAndSeedGiveAByteIdenticalReport) {
+  const Law law = Law::hertz();
+  const Dataset d = generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{},
+                                     NoiseSpec{0.01, 0.0, false}, 9);
+  const FitSettings s = settings_for(ModelKind::Seed, law);
+  const std::string a = report_json(Fitter(s).fit(d)).dump(2);
+  const std::string b = report_json(Fitter(s).fit(d)).dump(2);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(a.find("NaN"), std::string::npos);
+}
+
+TEST(Fitter, RequestedChannelThatNoRowMeasuresIsReportedNotFitted) {
+  const Law law = Law::hertz();
+  Dataset d =
+      generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{}, NoiseSpec{}, 5);
+  for (auto& p : d.present[static_cast<int>(Channel::M_roll)]) p = 0;
+  FitSettings s = settings_for(ModelKind::Seed, law);
+  s.channels = {Channel::T_x, Channel::T_y, Channel::M_z, Channel::M_roll};
+  const FitResult r = Fitter(s).fit(d);
+  EXPECT_EQ(r.channels.size(), 3u);
+  bool warned = false;
+  for (const auto& w : r.warnings) warned |= w.find("M_roll") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
+}  // namespace
+}  // namespace frictionid

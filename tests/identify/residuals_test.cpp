@@ -1,0 +1,57 @@
+#include "identify/residuals.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace frictionid {
+namespace {
+
+// The scaled residuals of a row must square-sum to rho(s) of its unscaled squared norm s.
+TEST(Residuals, RobustRowFactorTurnsTheSquaredNormIntoTheLoss) {
+  const double c = 1.5;
+  for (double s : {0.01, 1.0, 2.25, 9.0, 400.0}) {
+    const double huber = s <= c * c ? s : 2 * c * std::sqrt(s) - c * c;
+    const double cauchy = c * c * std::log1p(s / (c * c));
+    const double soft = 2 * c * c * (std::sqrt(1 + s / (c * c)) - 1);
+    auto sq = [&](LossKind k) {
+      const double f = robust_row_factor(s, k, c);
+      return f * f * s;
+    };
+    EXPECT_NEAR(sq(LossKind::Huber), huber, 1e-12 * huber);
+    EXPECT_NEAR(sq(LossKind::Cauchy), cauchy, 1e-12 * cauchy);
+    EXPECT_NEAR(sq(LossKind::SoftL1), soft, 1e-12 * soft);
+    EXPECT_EQ(sq(LossKind::None), s);
+  }
+}
+
+TEST(Residuals, WhiteningDividesByTheSigmaColumnOrTheChannelScale) {
+  Dataset d;
+  d.v_x = {0.1};
+  d.v_y = {0.0};
+  d.omega = {2.0};
+  d.N = {1000.0};
+  d.R = {0.05};
+  for (int c = 0; c < kChannelCount; ++c) {
+    d.value[c] = {1.0};
+    d.present[c] = {1};
+  }
+  d.sigma[0] = {0.5};  // T_x has a sigma column
+  ResidualRows rows;
+  rows.data = &d;
+  rows.channels = {Channel::T_x, Channel::T_y};
+  rows.scale = {7.0, 4.0, 1.0, 1.0};
+  rows.begin = 0;
+  rows.end = 1;
+  const auto law = model::PressureLaw<double>::hertz();
+  const auto p = default_parameters(law, 0.8, 1.2, 0.1);
+  double r[2];
+  ASSERT_TRUE(evaluate_residuals(rows, ModelKind::Seed, law, LossKind::None, 1.0, p.data(), r));
+  const auto pred = ModelEvaluator<double>(
+      ModelKind::Seed, law, p.data())(model::Kinematics{0.1, 0.0, 2.0, 1000.0, 0.05});
+  EXPECT_DOUBLE_EQ(r[0], (pred.T_x - 1.0) / 0.5);
+  EXPECT_DOUBLE_EQ(r[1], (pred.T_y - 1.0) / 4.0);
+}
+
+}  // namespace
+}  // namespace frictionid
