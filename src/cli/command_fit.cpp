@@ -104,6 +104,7 @@ int run_fit(const FitOptions& o) {
   s.starts = o.starts;
   s.seed = o.seed;
   s.global = !o.no_global;
+  s.global_algorithm = o.global_algorithm;
   s.global_evaluations = o.global_evaluations;
   s.global_subsample = o.global_subsample;
   s.threads = std::max(1, o.threads);

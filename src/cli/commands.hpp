@@ -54,6 +54,7 @@ struct FitOptions {
   long global_evaluations = 3000;
   std::size_t global_subsample = 400;
   bool no_global = false;
+  std::string global_algorithm = "crs2";
   int threads = 1;
   std::string report;
   bool progress = false;

@@ -86,6 +86,10 @@ void add_fit(CLI::App& app, FitOptions& o) {
       ->capture_default_str();
   c->add_option("--global-subsample", o.global_subsample, "rows the global stage sees")
       ->capture_default_str();
+  c->add_option("--global-algorithm", o.global_algorithm,
+                "crs2, isres, direct, esch or random (see experiments/global_search)")
+      ->check(CLI::IsMember({"crs2", "isres", "direct", "esch", "random"}))
+      ->capture_default_str();
   c->add_flag("--no-global", o.no_global, "skip the global stage; start from --param values");
   c->add_option("--channels", o.channels, "channels to fit, e.g. T_x,M_z (default: all measured)");
   c->add_option("--columns", o.columns, "rename columns: canonical=header,...");

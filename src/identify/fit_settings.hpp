@@ -32,9 +32,10 @@ struct FitSettings {
 
   // Global stage: NLopt over the bounds box, then Ceres from the best distinct points.
   bool global = true;
-  int starts = 4;                      // local fits from the global stage's best distinct points
-  long global_evaluations = 3000;      // objective budget of the global stage
-  std::size_t global_subsample = 400;  // rows the global stage sees (deterministic subsample)
+  std::string global_algorithm = "crs2";  // see global_search.hpp and experiments/global_search
+  int starts = 4;                         // local fits from the global stage's best distinct points
+  long global_evaluations = 3000;         // objective budget of the global stage
+  std::size_t global_subsample = 400;     // rows the global stage sees (deterministic subsample)
   unsigned long long seed = 1;
 
   int max_iterations = 200;

@@ -284,9 +284,9 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
                      s.global_evaluations);
       return sum_of_squares(ps, ps.blocks, x);
     };
-    const GlobalSearchOutcome g =
-        global_search(gp, "crs2", s.global_evaluations, s.seed, std::max(1, s.starts), cancel);
-    res.global.algorithm = "NLopt GN_CRS2_LM";
+    const GlobalSearchOutcome g = global_search(gp, s.global_algorithm, s.global_evaluations,
+                                                s.seed, std::max(1, s.starts), cancel);
+    res.global.algorithm = global_algorithm_label(s.global_algorithm);
     res.global.evaluations = g.evaluations;
     for (const auto& z : g.starts) {
       Params x = initial;

@@ -39,6 +39,15 @@ nlopt::algorithm algorithm_of(const std::string& name) {
 
 }  // namespace
 
+std::string global_algorithm_label(const std::string& a) {
+  if (a == "crs2") return "NLopt GN_CRS2_LM";
+  if (a == "isres") return "NLopt GN_ISRES";
+  if (a == "direct") return "NLopt GN_DIRECT_L";
+  if (a == "esch") return "NLopt GN_ESCH";
+  if (a == "random") return "uniform random sampling";
+  return a;
+}
+
 std::vector<std::string> global_algorithms() {
   return {"crs2", "isres", "direct", "esch", "random"};
 }

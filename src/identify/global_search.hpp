@@ -28,5 +28,7 @@ GlobalSearchOutcome global_search(const GlobalSearchProblem& problem, const std:
                                   const std::atomic<bool>* cancel = nullptr);
 
 std::vector<std::string> global_algorithms();
+// "NLopt GN_CRS2_LM" etc., for reports.
+std::string global_algorithm_label(const std::string& algorithm);
 
 }  // namespace frictionid

@@ -15,10 +15,12 @@ struct EllipticParts {
   T K, E, B, D, b_minus_d_over_m;
 };
 
-// m in [0, 1], m1 = 1 - m > 0 (callers clamp m1 away from 0; K diverges like ln(4/sqrt(m1))).
+// m in [0, 1], m1 = 1 - m >= 0 (floored at 1e-300; K diverges like ln(4/sqrt(m1))).
 template <typename T>
-EllipticParts<T> elliptic_parts(const T& m, const T& m1) {
+EllipticParts<T> elliptic_parts(const T& m, const T& m1_in) {
   using std::sqrt;
+  // On k = 1 itself K is infinite; a floor keeps every kernel finite (m1 K -> 0 there).
+  const T m1 = m1_in < 1e-300 ? T(1e-300) : m1_in;
   const T kp = sqrt(m1);
   T a = T(1), b = kp;
   // c_n / m with c_1 = m / (2 (1 + k')) and c_{n+1} = c_n^2 / (4 a_{n+1}): no differences taken.

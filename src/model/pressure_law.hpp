@@ -41,7 +41,8 @@ struct PressureLaw {
       case PressureKind::Parabolic:
         return T(rim);
       case PressureKind::Power:
-        return rim > 0.0 ? T(exp(n * log(rim))) : T(0);
+        if (rim > 0.0) return T(exp(n * log(rim)));
+        return n == 0.0 ? T(1) : T(0);  // (1 - rho^2)^0 = 1 on the rim too
       case PressureKind::Table:
         return T((*table)(rho, one_minus_rho));
     }
