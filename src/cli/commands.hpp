@@ -61,4 +61,10 @@ struct FitOptions {
 };
 int run_fit(const FitOptions& o);
 
+struct CompareOptions {
+  FitOptions fit;  // everything but --model, applied to every model where it applies
+  std::string models = "seed,corrected,exact";
+};
+int run_compare(const CompareOptions& o);
+
 }  // namespace frictionid::cli

@@ -68,11 +68,9 @@ void add_generate(CLI::App& app, GenerateOptions& o) {
   c->add_flag("--forward-only", o.forward_only, "no rows with backward slip (v_x < 0)");
 }
 
-void add_fit(CLI::App& app, FitOptions& o) {
-  auto* c =
-      app.add_subcommand("fit", "Identify a model's parameters from a CSV and write a report");
+// The options fit and compare share.
+void add_fit_options(CLI::App* c, FitOptions& o) {
   c->add_option("data", o.data, "dataset CSV")->required();
-  c->add_option("--model", o.model, "seed, corrected or exact")->capture_default_str();
   c->add_option("--pressure", o.pressure, kLawHelp)->capture_default_str();
   c->add_option("--fix", o.fix, "hold parameters fixed: name=value,...");
   c->add_option("--bounds", o.bounds, "parameter bounds: name=lo:hi,...");
@@ -98,6 +96,20 @@ void add_fit(CLI::App& app, FitOptions& o) {
   c->add_flag("--progress", o.progress, "progress line on stderr (default: when it is a terminal)");
 }
 
+void add_fit(CLI::App& app, FitOptions& o) {
+  auto* c =
+      app.add_subcommand("fit", "Identify a model's parameters from a CSV and write a report");
+  c->add_option("--model", o.model, "seed, corrected or exact")->capture_default_str();
+  add_fit_options(c, o);
+}
+
+void add_compare(CLI::App& app, CompareOptions& o) {
+  auto* c = app.add_subcommand(
+      "compare", "Fit seed, corrected and exact to the same rows and report them side by side");
+  c->add_option("--models", o.models, "models to compare, comma separated")->capture_default_str();
+  add_fit_options(c, o.fit);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -114,6 +126,8 @@ int main(int argc, char** argv) {
   FitOptions fit;
   add_generate(app, generate);
   add_fit(app, fit);
+  CompareOptions compare;
+  add_compare(app, compare);
 
   try {
     app.parse(argc, argv);
@@ -133,6 +147,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("eval")) return run_eval(eval);
     if (app.got_subcommand("generate")) return run_generate(generate);
     if (app.got_subcommand("fit")) return run_fit(fit);
+    if (app.got_subcommand("compare")) return run_compare(compare);
   } catch (const frictionid::InputError& e) {
     std::fprintf(stderr, "frictionid: error: %s\n", e.what());
     return kExitBadInput;

@@ -45,7 +45,8 @@ struct SolverSummary {
   int iterations = 0;
   std::string termination;  // Ceres' termination type, e.g. CONVERGENCE
   bool converged = false;
-  double time_s = 0.0;  // wall time; not written to report.json (reports are reproducible)
+  // Wall times; not written to report.json (reports are reproducible), printed by the CLI.
+  double time_s = 0.0, global_time_s = 0.0, local_time_s = 0.0, statistics_time_s = 0.0;
 };
 
 struct FitResult {

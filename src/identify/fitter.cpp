@@ -298,6 +298,7 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
   } else {
     res.global.algorithm = "none (initial values)";
   }
+  const auto t_global = std::chrono::steady_clock::now();
   if (starts.empty()) starts.push_back(initial);
   if (cancel && cancel->load()) throw FitError("interrupted");
 
@@ -324,6 +325,7 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
   res.solver.converged = L.summary.termination_type == ceres::CONVERGENCE ||
                          L.summary.termination_type == ceres::USER_SUCCESS;
   const Params& x = L.x;
+  const auto t_local = std::chrono::steady_clock::now();
 
   // Jacobian and residuals at the optimum (whitened, robustified), free columns only.
   std::size_t nres = 0;
@@ -528,7 +530,12 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
           "near eps = 1, physics.md §3), so fitted coefficients need not equal the matched ones");
     }
   }
-  res.solver.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto t_end = std::chrono::steady_clock::now();
+  using seconds = std::chrono::duration<double>;
+  res.solver.time_s = seconds(t_end - t0).count();
+  res.solver.global_time_s = seconds(t_global - t0).count();
+  res.solver.local_time_s = seconds(t_local - t_global).count();
+  res.solver.statistics_time_s = seconds(t_end - t_local).count();
   return res;
 }
 

@@ -63,10 +63,21 @@ using TrimPolicy = io::trim_chars<' ', '\t'>;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// The text quoted for a message, cut at 60 bytes; control characters other than tab (e.g. a CR)
+// are shown as \xNN so that the message stays one readable line.
 std::string shown(std::string_view text) {
   constexpr std::size_t kMax = 60;
-  if (text.size() <= kMax) return "'" + std::string(text) + "'";
-  return "'" + std::string(text.substr(0, kMax)) + "...'";
+  std::string out = "'";
+  for (const char c : text.substr(0, kMax)) {
+    const auto u = static_cast<unsigned char>(c);
+    if ((u < 0x20 && c != '\t') || u == 0x7f) {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += {'\\', 'x', kHex[u >> 4], kHex[u & 15]};
+    } else {
+      out += c;
+    }
+  }
+  return out + (text.size() > kMax ? "...'" : "'");
 }
 
 char lower(char c) {
@@ -291,6 +302,13 @@ Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns, bool
     if (line == nullptr)
       throw InputError(path, 0, 0,
                        "empty file; expected a header row such as v_x,v_y,omega,N,R,T_x,T_y,M_z");
+    // A CR left inside the first line means CR-only line ends (CRLF's CR is already stripped).
+    if (const char* cr = std::strchr(line, '\r')) {
+      const auto column = std::count(static_cast<const char*>(line), cr, ',') + 1;
+      throw InputError(path, 1, static_cast<std::size_t>(column),
+                       "the first line contains a carriage return (CR): the file seems to use "
+                       "CR-only (classic Mac) line ends; expected LF or CRLF line ends");
+    }
     std::vector<std::string_view> fields;
     fields.reserve(32);
     split_fields(line, fields, path, 1);

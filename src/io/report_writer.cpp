@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 
 #include "io/atomic_file.hpp"
+#include "io/gnuplot.hpp"
 
 namespace frictionid {
 namespace {
@@ -115,17 +116,6 @@ std::vector<std::string> default_plot_files(const FitResult& r) {
 // ---------------------------------------------------------------------------------------------
 // Plot helpers
 
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char ch : s) {
-    if (ch == '\'')
-      out += "'\\''";
-    else
-      out += ch;
-  }
-  return out + "'";
-}
-
 std::string ordinal(std::size_t k) {
   const std::size_t mod100 = k % 100;
   const char* suffix = "th";
@@ -140,43 +130,6 @@ std::string ordinal(std::size_t k) {
 const char* channel_unit(Channel c) {
   return (c == Channel::T_x || c == Channel::T_y) ? "N" : "N m";
 }
-
-std::optional<std::string> read_whole_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (!in.good() && !in.eof()) return std::nullopt;
-  return ss.str();
-}
-
-bool looks_like_svg(const std::string& s) {
-  return s.rfind("<?xml", 0) == 0 || s.rfind("<svg", 0) == 0;
-}
-
-// A private directory under the system temp dir, removed with everything in it on scope exit.
-class TempDir {
- public:
-  TempDir() {
-    std::error_code ec;
-    const fs::path base = fs::temp_directory_path(ec);
-    if (ec) return;
-    std::string tmpl = (base / "frictionid-plots-XXXXXX").string();
-    if (::mkdtemp(tmpl.data()) != nullptr) path_ = tmpl;
-  }
-  ~TempDir() {
-    if (path_.empty()) return;
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  bool ok() const { return !path_.empty(); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 struct PlotPoint {
   int kind;  // 0: eps <= 0 (left edge), 1: placeable on the log axis, 2: eps = +inf (right edge)
@@ -315,50 +268,17 @@ bool prepare_channel_plot(const FitResult& r, const Dataset& d, Channel c, const
   return true;
 }
 
-// Renders every plot in one gnuplot run inside a private temp dir, then copies each SVG into
-// `dir` with write_file_atomically. Working in the temp dir keeps DIR's path (quotes, spaces)
-// out of the gnuplot script and leaves nothing in DIR if gnuplot dies half-way. Returns the file
-// names written; any failure just drops plots.
+// Every plot in one gnuplot run (io/gnuplot.hpp); any failure just drops plots.
 std::vector<std::string> write_plots(const fs::path& dir, const FitResult& r, const Dataset& d) {
-  std::vector<std::string> written;
-  if (!gnuplot_available()) return written;
-  TempDir work;
-  if (!work.ok()) return written;
-
-  std::string script =
-      "set terminal svg size 800,500 fixed font 'Helvetica,12' noenhanced "
-      "background rgb 'white'\n";
-  std::vector<std::string> expected;
-  for (Channel c : r.channels) {
-    if (!prepare_channel_plot(r, d, c, work.path(), script)) continue;
-    expected.push_back(fmt::format("fit_{}.svg", channel_name(c)));
-    expected.push_back(fmt::format("residuals_{}.svg", channel_name(c)));
-  }
-  if (expected.empty()) return written;
-  script += "unset output\n";
-  {
-    std::ofstream out(work.path() / "plots.gp", std::ios::binary);
-    out << script;
-    if (!out) return written;
-  }
-
-  // -d: ignore the user's ~/.gnuplot so the SVGs do not depend on who runs the tool.
-  const std::string cmd =
-      "cd " + shell_quote(work.path().string()) + " && gnuplot -d plots.gp >gnuplot.log 2>&1";
-  const int status = std::system(cmd.c_str());
-  if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) return written;
-
-  for (const auto& file : expected) {
-    const auto svg = read_whole_file(work.path() / file);
-    if (!svg || !looks_like_svg(*svg)) continue;
-    try {
-      write_file_atomically((dir / file).string(), *svg);
-      written.push_back(file);
-    } catch (const std::exception&) {
-      // Plots are optional; a report file that cannot be written still throws below.
+  return render_svgs(dir, [&](const fs::path& work, std::string& script) {
+    std::vector<std::string> expected;
+    for (Channel c : r.channels) {
+      if (!prepare_channel_plot(r, d, c, work, script)) continue;
+      expected.push_back(fmt::format("fit_{}.svg", channel_name(c)));
+      expected.push_back(fmt::format("residuals_{}.svg", channel_name(c)));
     }
-  }
-  return written;
+    return expected;
+  });
 }
 
 }  // namespace
@@ -548,26 +468,6 @@ std::string report_markdown(const FitResult& r, const std::vector<std::string>& 
     line("");
   }
   return md;
-}
-
-bool gnuplot_available() {
-  if (std::system(nullptr) == 0) return false;  // no shell to run it with
-  const char* path = std::getenv("PATH");
-  if (path == nullptr) return false;
-  std::string entries = path;
-  std::size_t start = 0;
-  while (start <= entries.size()) {
-    std::size_t end = entries.find(':', start);
-    if (end == std::string::npos) end = entries.size();
-    std::string d = entries.substr(start, end - start);
-    if (d.empty()) d = ".";  // an empty PATH entry means the current directory
-    const std::string exe = d + "/gnuplot";
-    struct stat sb;
-    if (::stat(exe.c_str(), &sb) == 0 && S_ISREG(sb.st_mode) && ::access(exe.c_str(), X_OK) == 0)
-      return true;
-    start = end + 1;
-  }
-  return false;
 }
 
 std::vector<std::string> write_report(const std::string& dir, const FitResult& r,

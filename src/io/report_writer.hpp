@@ -10,6 +10,7 @@
 
 #include "identify/dataset.hpp"
 #include "identify/fit_result.hpp"
+#include "io/gnuplot.hpp"
 
 namespace frictionid {
 
@@ -24,9 +25,6 @@ std::string report_markdown(const FitResult& r);
 // Same, linking exactly `plot_files` (file names relative to the report directory); with an
 // empty list the Plots section says that no plots were produced.
 std::string report_markdown(const FitResult& r, const std::vector<std::string>& plot_files);
-
-// True when a `gnuplot` executable is on PATH.
-bool gnuplot_available();
 
 // Writes DIR/report.json, DIR/report.md and, when gnuplot works, DIR/fit_<c>.svg and
 // DIR/residuals_<c>.svg for each fitted channel c; creates DIR if needed. Every file is written

@@ -127,3 +127,27 @@ TEST(Cli, FitOnAMissingFileOrUnknownParameterFailsWithoutAReport) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Cli, CompareWritesSideBySideReportsAndPrefersTheGeneratingModel) {
+  const fs::path d = temp_dir("compare");
+  const std::string csv = (d / "data.csv").string();
+  ASSERT_EQ(run("generate --model exact --pressure hertz --param f=0.9,kappa=1.2,h=0.1 --rows 200 "
+                "--noise 0.002 --output " +
+                csv)
+                .code,
+            0);
+  const RunResult r = run("compare " + csv + " --pressure hertz --report " + (d / "cmp").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::ifstream in(d / "cmp" / "compare.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["preferred_by_aic"], "exact");
+  EXPECT_EQ(j["models"].size(), 3u);
+  for (const char* m : {"seed", "corrected", "exact"})
+    EXPECT_TRUE(fs::exists(d / "cmp" / m / "report.json")) << m;
+  EXPECT_TRUE(fs::exists(d / "cmp" / "compare.md"));
+  fs::remove_all(d);
+}
+
+}  // namespace

@@ -1,0 +1,249 @@
+#include "io/compare_report.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <stdexcept>
+
+#include "io/atomic_file.hpp"
+#include "io/gnuplot.hpp"
+#include "io/report_writer.hpp"
+
+namespace frictionid {
+namespace {
+
+namespace fs = std::filesystem;
+using ojson = nlohmann::ordered_json;
+
+ojson num(double x) {
+  return std::isfinite(x) ? ojson(x) : ojson(nullptr);
+}
+ojson num(const std::optional<double>& x) {
+  return x ? num(*x) : ojson(nullptr);
+}
+std::string g6(double x) {
+  return std::isfinite(x) ? fmt::format("{:.6g}", x) : "—";
+}
+
+const ParameterEstimate* find_param(const FitResult& f, const std::string& name) {
+  for (const auto& p : f.parameters)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+std::vector<std::string> all_parameter_names(const ModelComparison& c) {
+  std::vector<std::string> names;
+  for (const auto& f : c.fits)
+    for (const auto& p : f.parameters)
+      if (std::find(names.begin(), names.end(), p.name) == names.end()) names.push_back(p.name);
+  return names;
+}
+
+}  // namespace
+
+std::vector<std::string> coefficient_notes(const ModelComparison& c) {
+  std::vector<std::string> notes;
+  if (c.implied_by_exact.empty()) return notes;
+  for (const auto& f : c.fits) {
+    if (f.model == "exact") continue;
+    for (const char* name : {"a", "b", "b_tilde", "m"}) {
+      const ParameterEstimate* p = find_param(f, name);
+      if (!p || p->fixed || !c.implied_by_exact.count(name)) continue;
+      const double implied = c.implied_by_exact.at(name);
+      const double rel = (p->value - implied) / implied;
+      if (std::fabs(rel) <= 0.05) {
+        notes.push_back(
+            fmt::format("{}: fitted {} = {} agrees within 5% with {} implied by the exact fit's "
+                        "pressure shape: "
+                        "the data are consistent with the slope-matched coefficient.",
+                        f.model, name, g6(p->value), g6(implied)));
+      } else {
+        notes.push_back(fmt::format(
+            "{}: fitted {} = {} differs by {:+.0f}% from {} implied by the exact fit's pressure "
+            "shape: the closed form's eps-shape is not the integral model's (errors of tens of "
+            "percent near eps = 1, physics.md §3), so {} absorbs that shape error instead of "
+            "measuring the pressure distribution; read it as a curve-fit constant.",
+            f.model, name, g6(p->value), 100 * rel, g6(implied), name));
+      }
+    }
+  }
+  return notes;
+}
+
+nlohmann::ordered_json compare_json(const ModelComparison& c) {
+  ojson j;
+  j["rows"] = c.fits.empty() ? 0 : c.fits.front().rows;
+  ojson channels = ojson::array();
+  if (!c.fits.empty())
+    for (Channel ch : c.fits.front().channels) channels.push_back(channel_name(ch));
+  j["channels"] = channels;
+  ojson models = ojson::array();
+  for (std::size_t k = 0; k < c.fits.size(); ++k) {
+    const FitResult& f = c.fits[k];
+    ojson m;
+    m["model"] = f.model;
+    m["pressure"] = f.pressure;
+    ojson params;
+    for (const auto& p : f.parameters)
+      params[p.name] = {{"value", num(p.value)}, {"stderr", num(p.std_error)}, {"fixed", p.fixed}};
+    m["parameters"] = params;
+    m["cost"] = num(f.cost);
+    m["chi2"] = num(f.chi2);
+    m["aic"] = num(f.aic);
+    m["bic"] = num(f.bic);
+    m["delta_aic"] = num(c.delta_aic[k]);
+    m["delta_bic"] = num(c.delta_bic[k]);
+    ojson rmse, ac;
+    for (const auto& cs : f.channel_summaries) rmse[channel_name(cs.channel)] = num(cs.rmse);
+    for (const auto& [name, v] : c.residual_autocorrelation[k]) ac[name] = num(v);
+    m["rmse"] = rmse;
+    m["residual_autocorrelation"] = ac;
+    m["warnings"] = f.warnings;
+    models.push_back(m);
+  }
+  j["models"] = models;
+  j["preferred_by_aic"] = c.preferred_by_aic;
+  j["preferred_by_bic"] = c.preferred_by_bic;
+  ojson implied = ojson::object();
+  for (const char* name : {"a", "b", "m", "b_tilde", "p0"})
+    if (c.implied_by_exact.count(name)) implied[name] = num(c.implied_by_exact.at(name));
+  j["implied_by_exact"] = implied;
+  j["notes"] = coefficient_notes(c);
+  return j;
+}
+
+std::string compare_markdown(const ModelComparison& c, const std::vector<std::string>& plots) {
+  std::string md = "# frictionid compare\n\n";
+  if (c.fits.empty()) return md + "No models were fitted.\n";
+  const FitResult& first = c.fits.front();
+  md += fmt::format(
+      "{} rows; the same rows, channels and whitening for every model. Preferred "
+      "by AIC: **{}**; by BIC: **{}**.\n\n",
+      first.rows, c.preferred_by_aic, c.preferred_by_bic);
+  md += "## Fit quality\n\n| model | cost | χ² | AIC | ΔAIC | BIC | ΔBIC |";
+  for (const auto& cs : first.channel_summaries)
+    md += fmt::format(" RMSE {} | residual lag-1 corr. {} |", channel_name(cs.channel),
+                      channel_name(cs.channel));
+  md += "\n|---|---|---|---|---|---|---|";
+  for (std::size_t i = 0; i < first.channel_summaries.size(); ++i) md += "---|---|";
+  md += "\n";
+  for (std::size_t k = 0; k < c.fits.size(); ++k) {
+    const FitResult& f = c.fits[k];
+    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |", f.model, g6(f.cost), g6(f.chi2),
+                      g6(f.aic), g6(c.delta_aic[k]), g6(f.bic), g6(c.delta_bic[k]));
+    for (const auto& cs : f.channel_summaries) {
+      const auto it = c.residual_autocorrelation[k].find(channel_name(cs.channel));
+      md += fmt::format(
+          " {} | {} |", cs.rmse ? g6(*cs.rmse) : "—",
+          it == c.residual_autocorrelation[k].end() ? "—" : fmt::format("{:.2f}", it->second));
+    }
+    md += "\n";
+  }
+  md +=
+      "\nA residual lag-1 correlation near 1 (residuals ordered by eps) is a systematic shape "
+      "misfit; near 0, noise.\n\n## Parameters\n\n| parameter |";
+  for (const auto& f : c.fits) md += " " + f.model + " |";
+  if (!c.implied_by_exact.empty()) md += " implied by exact |";
+  md += "\n|---|";
+  for (std::size_t k = 0; k < c.fits.size(); ++k) md += "---|";
+  if (!c.implied_by_exact.empty()) md += "---|";
+  md += "\n";
+  for (const auto& name : all_parameter_names(c)) {
+    md += "| " + name + " |";
+    for (const auto& f : c.fits) {
+      const ParameterEstimate* p = find_param(f, name);
+      if (!p)
+        md += " |";
+      else if (p->fixed)
+        md += " " + g6(p->value) + " (fixed) |";
+      else if (p->std_error)
+        md += fmt::format(" {} ± {:.2g} |", g6(p->value), *p->std_error);
+      else
+        md += " " + g6(p->value) + " (not determined) |";
+    }
+    if (!c.implied_by_exact.empty())
+      md += c.implied_by_exact.count(name) ? " " + g6(c.implied_by_exact.at(name)) + " |" : " |";
+    md += "\n";
+  }
+  const auto notes = coefficient_notes(c);
+  md += "\n## What the coefficients mean\n\n";
+  if (notes.empty()) md += "- no exact fit to compare with\n";
+  for (const auto& n : notes) md += "- " + n + "\n";
+  md += "\n## Per-model reports\n\n";
+  for (const auto& f : c.fits) md += fmt::format("- [{0}]({0}/report.md)\n", f.model);
+  if (!plots.empty()) {
+    md +=
+        "\n## Plots\n\nEach channel divided by N (forces) or N R (torques) and by its parity "
+        "sign, against eps.\n\n";
+    for (const auto& p : plots) md += fmt::format("![{}]({})\n\n", p, p);
+  }
+  return md;
+}
+
+std::vector<std::string> write_compare_report(const std::string& dir, const ModelComparison& c,
+                                              const Dataset& d) {
+  const fs::path out(dir);
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec || !fs::is_directory(out))
+    throw std::runtime_error("cannot create report directory " + dir);
+  std::vector<std::string> written;
+  for (const auto& f : c.fits)
+    for (const auto& w : write_report((out / f.model).string(), f, d)) written.push_back(w);
+  write_file_atomically(
+      (out / "compare.json").string(),
+      compare_json(c).dump(2, ' ', false, ojson::error_handler_t::replace) + "\n");
+  written.push_back((out / "compare.json").string());
+
+  const std::vector<std::string> plots =
+      render_svgs(out, [&](const fs::path& work, std::string& script) {
+        std::vector<std::string> expected;
+        if (c.fits.empty()) return expected;
+        std::vector<std::size_t> order(d.rows());
+        std::iota(order.begin(), order.end(), 0);
+        const auto& eps = c.fits.front().eps;
+        std::stable_sort(order.begin(), order.end(),
+                         [&](std::size_t a, std::size_t b) { return eps[a] < eps[b]; });
+        for (Channel ch : c.fits.front().channels) {
+          const int ci = static_cast<int>(ch);
+          const std::string data = fmt::format("compare_{}.dat", channel_name(ch));
+          std::ofstream f(work / data, std::ios::binary);
+          std::size_t n = 0;
+          for (std::size_t i : order) {
+            if (!d.present[ci][i] || !(eps[i] > 0.0) || !std::isfinite(eps[i])) continue;
+            const double s = collapse_factor(d, ch, i);
+            f << fmt::format("{:.9g} {:.9g}", eps[i], d.value[ci][i] * s);
+            for (const auto& fit : c.fits) f << fmt::format(" {:.9g}", fit.fitted[ci][i] * s);
+            f << "\n";
+            ++n;
+          }
+          if (n == 0) continue;
+          const std::string file = fmt::format("compare_{}.svg", channel_name(ch));
+          script += fmt::format(
+              "reset\nset output '{}'\nset logscale x\nset grid\nset key outside bottom center "
+              "horizontal\nset xlabel 'eps = v/(|omega| R)'\nset ylabel '{} / {}'\n"
+              "set title \"{}: measured and every model (divided by load and parity sign)\"\n"
+              "plot '{}' using 1:2 with points pt 7 ps 0.4 lc rgb '#555555' title 'measured'",
+              file, channel_name(ch), ch == Channel::T_x || ch == Channel::T_y ? "N" : "(N R)",
+              channel_name(ch), data);
+          const char* colors[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd"};
+          for (std::size_t k = 0; k < c.fits.size(); ++k)
+            script += fmt::format(
+                ", \\\n  '{}' using 1:{} with points pt 6 ps 0.5 lc rgb '{}' title '{}'", data,
+                k + 3, colors[k % 4], c.fits[k].model);
+          script += "\n";
+          expected.push_back(file);
+        }
+        return expected;
+      });
+  write_file_atomically((out / "compare.md").string(), compare_markdown(c, plots));
+  written.push_back((out / "compare.md").string());
+  for (const auto& p : plots) written.push_back((out / p).string());
+  return written;
+}
+
+}  // namespace frictionid
