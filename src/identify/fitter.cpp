@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <set>
@@ -21,20 +22,43 @@ namespace frictionid {
 namespace {
 
 using Params = std::array<double, kParamCount>;
-constexpr std::size_t kBlockRows = 256;
+constexpr std::size_t kBlockRows = 1024;
 
+// One residual block. Its parameter block holds only the free parameters (Jets as narrow as
+// the fit needs); the fixed and unused ones come from `base`.
 struct BlockCost {
   ResidualRows rows;
   ModelKind kind;
   const model::PressureLaw<double>* law;
   LossKind loss;
   double loss_scale;
+  const std::vector<int>* free;
+  Params base;
   template <typename T>
-  bool operator()(const T* p, T* r) const {
-    return evaluate_residuals(rows, kind, *law, loss, loss_scale, p, r);
+  bool operator()(const T* z, T* r) const {
+    std::array<T, kParamCount> full;
+    for (int i = 0; i < kParamCount; ++i) full[i] = T(base[i]);
+    for (std::size_t j = 0; j < free->size(); ++j) full[(*free)[j]] = z[j];
+    return evaluate_residuals(rows, kind, *law, loss, loss_scale, full.data(), r);
   }
 };
-using BlockCostFunction = ceres::AutoDiffCostFunction<BlockCost, ceres::DYNAMIC, kParamCount>;
+
+template <int N>
+ceres::CostFunction* make_cost_n(const BlockCost& c) {
+  return new ceres::AutoDiffCostFunction<BlockCost, ceres::DYNAMIC, N>(
+      new BlockCost(c), static_cast<int>(c.rows.residual_count()));
+}
+
+// Jet width is a compile-time constant: dispatch on the number of free parameters.
+std::unique_ptr<ceres::CostFunction> make_cost_function(const BlockCost& c) {
+  using Maker = ceres::CostFunction* (*)(const BlockCost&);
+  static constexpr Maker makers[kParamCount] = {make_cost_n<1>, make_cost_n<2>, make_cost_n<3>,
+                                                make_cost_n<4>, make_cost_n<5>, make_cost_n<6>,
+                                                make_cost_n<7>, make_cost_n<8>, make_cost_n<9>};
+  const std::size_t k = c.free->size();
+  if (k < 1 || k > kParamCount) throw std::logic_error("free parameter count out of range");
+  return std::unique_ptr<ceres::CostFunction>(makers[k - 1](c));
+}
 
 struct Problem {
   const Dataset* data;
@@ -105,27 +129,29 @@ LocalOutcome local_fit(const Problem& p, const Params& start, const std::atomic<
   out.x = start;
   ceres::Problem::Options po;
   ceres::Problem problem(po);
-  for (const auto& b : p.blocks) {
-    auto* cf =
-        new BlockCostFunction(new BlockCost{b, p.s->model, &p.s->law, p.s->loss, p.s->loss_scale},
-                              static_cast<int>(b.residual_count()));
-    problem.AddResidualBlock(cf, nullptr, out.x.data());
-  }
-  std::vector<int> constant;
-  for (int i = 0; i < kParamCount; ++i)
-    if (std::find(p.free.begin(), p.free.end(), i) == p.free.end()) constant.push_back(i);
   if (p.free.empty()) {
-    problem.SetParameterBlockConstant(out.x.data());
-  } else {
-    if (!constant.empty())
-      problem.SetManifold(out.x.data(), new ceres::SubsetManifold(kParamCount, constant));
-    for (int i : p.free) {
-      problem.SetParameterLowerBound(out.x.data(), i, p.s->params[i].lower);
-      problem.SetParameterUpperBound(out.x.data(), i, p.s->params[i].upper);
-    }
+    out.cost = 0.5 * sum_of_squares(p, p.blocks, out.x);
+    out.summary.termination_type = ceres::CONVERGENCE;
+    return out;
+  }
+  std::vector<double> z;
+  for (int i : p.free) z.push_back(out.x[i]);
+  for (const auto& b : p.blocks)
+    problem.AddResidualBlock(make_cost_function(BlockCost{b, p.s->model, &p.s->law, p.s->loss,
+                                                          p.s->loss_scale, &p.free, out.x})
+                                 .release(),
+                             nullptr, z.data());
+  for (std::size_t j = 0; j < p.free.size(); ++j) {
+    problem.SetParameterLowerBound(z.data(), static_cast<int>(j), p.s->params[p.free[j]].lower);
+    problem.SetParameterUpperBound(z.data(), static_cast<int>(j), p.s->params[p.free[j]].upper);
   }
   ceres::Solver::Options o;
-  o.linear_solver_type = ceres::DENSE_QR;
+  // A tall, thin Jacobian (rows x <= 9): normal equations cost O(m k^2) and are well enough
+  // conditioned for Levenberg-Marquardt's damped system.
+  o.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  // Ceres' projected line search under bounds costs one more Jacobian per iteration; bounds
+  // stay enforced by projecting the trust-region step, so skip it.
+  o.max_num_line_search_step_size_iterations = 0;
   o.max_num_iterations = p.s->max_iterations;
   o.function_tolerance = p.s->function_tolerance;
   o.gradient_tolerance = p.s->gradient_tolerance;
@@ -136,6 +162,8 @@ LocalOutcome local_fit(const Problem& p, const Params& start, const std::atomic<
   Callback cb(cancel, p.s->progress, start_index, starts);
   o.callbacks.push_back(&cb);
   ceres::Solve(o, &problem, &out.summary);
+  for (std::size_t j = 0; j < p.free.size(); ++j) out.x[p.free[j]] = z[j];
+  if (std::getenv("FRICTIONID_CERES_REPORT")) std::fprintf(stderr, "%s\n", out.summary.FullReport().c_str());
   out.cost = out.summary.final_cost;
   if (!std::isfinite(out.cost)) out.cost = std::numeric_limits<double>::infinity();
   return out;
@@ -336,20 +364,28 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
     std::size_t off = 0;
     std::vector<double> jac, rr;
     for (const auto& b : p.blocks) {
-      BlockCostFunction cf(new BlockCost{b, s.model, &s.law, s.loss, s.loss_scale},
-                           static_cast<int>(b.residual_count()));
       const std::size_t n = b.residual_count();
-      jac.assign(n * kParamCount, 0.0);
+      const std::size_t k = p.free.size();
+      jac.assign(n * std::max<std::size_t>(k, 1), 0.0);
       rr.assign(n, 0.0);
-      const double* params[] = {x.data()};
-      double* jacs[] = {jac.data()};
-      if (!cf.Evaluate(params, rr.data(), jacs))
-        throw FitError("the model is not finite at the fitted parameters");
+      std::vector<double> z;
+      for (int i : p.free) z.push_back(x[i]);
+      const BlockCost cost{b, s.model, &s.law, s.loss, s.loss_scale, &p.free, x};
+      if (k == 0) {
+        if (!evaluate_residuals(b, s.model, s.law, s.loss, s.loss_scale, x.data(), rr.data()))
+          throw FitError("the model is not finite at the fitted parameters");
+      } else {
+        const auto cf = make_cost_function(cost);
+        const double* params[] = {z.data()};
+        double* jacs[] = {jac.data()};
+        if (!cf->Evaluate(params, rr.data(), jacs))
+          throw FitError("the model is not finite at the fitted parameters");
+      }
       for (std::size_t i = 0; i < n; ++i) {
         r[static_cast<Eigen::Index>(off + i)] = rr[i];
         for (std::size_t j = 0; j < p.free.size(); ++j)
           J(static_cast<Eigen::Index>(off + i), static_cast<Eigen::Index>(j)) =
-              jac[i * kParamCount + static_cast<std::size_t>(p.free[j])];
+              jac[i * p.free.size() + j];
       }
       off += n;
     }

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -90,9 +91,11 @@ template <typename T>
 class ModelEvaluator {
  public:
   ModelEvaluator(ModelKind kind, const model::PressureLaw<double>& law, const T* params)
-      : kind_(kind), law_(promote(law, params)), exact_(exact_params(params), law_) {
-    if (kind_ != ModelKind::Exact) {
-      shape_ = model::approximant_shape(model::law_moments(law_));
+      : kind_(kind) {
+    if (kind_ == ModelKind::Exact) {
+      exact_ = std::make_unique<model::ExactModel<T>>(exact_params(params), promote(law, params));
+    } else {
+      shape_ = model::approximant_shape(model::law_moments(law));
       approx_ = {params[kF],
                  params[kKappa],
                  params[kH],
@@ -110,7 +113,7 @@ class ModelEvaluator {
       case ModelKind::Corrected:
         return model::approximant_resultants(model::ApproximantForm::Corrected, approx_, shape_, k);
       case ModelKind::Exact:
-        return exact_(k);
+        return (*exact_)(k);
     }
     throw std::logic_error("unknown model kind");
   }
@@ -126,9 +129,8 @@ class ModelEvaluator {
   static model::FrictionParams<T> exact_params(const T* p) { return {p[kF], p[kKappa], p[kH]}; }
 
   ModelKind kind_;
-  model::PressureLaw<T> law_;
-  model::ExactModel<T> exact_;
-  model::ApproximantShape<T> shape_{};
+  std::unique_ptr<model::ExactModel<T>> exact_;  // only for the exact variant
+  model::ApproximantShape<double> shape_{};
   model::ApproximantParams<T> approx_{};
 };
 

@@ -15,7 +15,13 @@ JacobianCovariance covariance_from_jacobian(const Eigen::MatrixXd& J, double rel
   Eigen::VectorXd norms = J.colwise().norm().transpose();
   for (Eigen::Index j = 0; j < k; ++j)
     if (!(norms[j] > 0.0)) norms[j] = 1.0;
-  const Eigen::MatrixXd Js = J * norms.cwiseInverse().asDiagonal();
+  // A tall Jacobian is reduced to its k x k triangular factor first: same singular values and
+  // right singular vectors, at O(m k^2) instead of a one-sided Jacobi sweep over m rows.
+  Eigen::MatrixXd Js = J * norms.cwiseInverse().asDiagonal();
+  if (Js.rows() > Js.cols()) {
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(Js);
+    Js = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
+  }
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(Js, Eigen::ComputeThinV);
   const Eigen::VectorXd& s = svd.singularValues();
   const Eigen::MatrixXd& V = svd.matrixV();

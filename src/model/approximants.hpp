@@ -74,9 +74,11 @@ T saturating(double eps, const T& c) {
   return T(1) / sqrt(T(1) + c / (eps * eps));
 }
 
+// The shape constants are plain doubles: the pressure law of a closed-form fit is fixed, so
+// they never carry derivatives (and autodiff need not pay for them).
 template <typename T>
 Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantParams<T>& p,
-                                     const ApproximantShape<T>& shape, const Kinematics& k) {
+                                     const ApproximantShape<double>& shape, const Kinematics& k) {
   using std::sqrt;
   const SlipGeometry g = slip_geometry(k);
   Resultants<T> r;
@@ -104,14 +106,18 @@ Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantPara
   const T m_alpha = p.m * (p.kappa * p.kappa) / (d22 * d22);
   const T g_hat =
       small ? T(1) / sqrt(T(1) + m_alpha * e2) : sqrt(T(inv2)) / sqrt(T(inv2) + m_alpha);
-  // s_hat = p0/(1 + b_S eps^2)^(3/2); u_hat likewise: both decay, written for eps = inf too.
-  const T sw = small ? T(1) / (T(1) + shape.b_S * e2) : T(inv2) / (T(inv2) + shape.b_S);
-  const T s_hat = shape.p0_law * sw * sqrt(sw);
-  // eps (1 + c eps^2)^(-3/2) = eps^-2 (eps^-2 + c)^(-3/2) for large eps.
-  const T uw = small ? T(1) / (T(1) + shape.c_U * e2) : T(1) / (T(inv2) + shape.c_U);
-  const T u_hat = shape.u_scale * (small ? eps : inv2) * uw * sqrt(uw);
-  const T x_hat = saturating(eps, shape.c_X);
-  const T v_hat = saturating(eps, shape.c_V);
+  // The tilt stand-ins act only off the principal axis (sin(a) != 0; d12 = 0 otherwise).
+  double s_hat = 0.0, u_hat = 0.0, x_hat = 0.0, v_hat = 0.0;
+  if (sa != 0.0) {
+    // s_hat = p0/(1 + b_S eps^2)^(3/2); u_hat likewise: both decay, written for eps = inf too.
+    const double sw = small ? 1.0 / (1.0 + shape.b_S * e2) : inv2 / (inv2 + shape.b_S);
+    s_hat = shape.p0_law * sw * std::sqrt(sw);
+    // eps (1 + c eps^2)^(-3/2) = eps^-2 (eps^-2 + c)^(-3/2) for large eps.
+    const double uw = small ? 1.0 / (1.0 + shape.c_U * e2) : 1.0 / (inv2 + shape.c_U);
+    u_hat = shape.u_scale * (small ? eps : inv2) * uw * std::sqrt(uw);
+    x_hat = saturating(eps, shape.c_X);
+    v_hat = saturating(eps, shape.c_V);
+  }
 
   const T F0 = p.f * k.N;
   const T base = t + p.h * (s * sa) * s_hat;
@@ -121,8 +127,10 @@ Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantPara
   r.T_x = t_par * ca - t_perp * sa;
   r.T_y = t_par * sa + t_perp * ca;
   const T M0 = (T(1) + p.kappa) * 0.5 * shape.mu_M * F0 * k.R;
-  r.M_z = M0 * s * g_hat + F0 * k.R * p.h * shape.rho_roll *
-                               (ca * d12 * (x_hat - u_hat) - sa * (d22 * u_hat - d11 * v_hat));
+  r.M_z = M0 * s * g_hat;
+  if (sa != 0.0)
+    r.M_z += F0 * k.R * p.h * shape.rho_roll *
+             (ca * d12 * (x_hat - u_hat) - sa * (d22 * u_hat - d11 * v_hat));
   return r;
 }
 
