@@ -163,7 +163,9 @@ LocalOutcome local_fit(const Problem& p, const Params& start, const std::atomic<
   o.callbacks.push_back(&cb);
   ceres::Solve(o, &problem, &out.summary);
   for (std::size_t j = 0; j < p.free.size(); ++j) out.x[p.free[j]] = z[j];
-  if (std::getenv("FRICTIONID_CERES_REPORT")) std::fprintf(stderr, "%s\n", out.summary.FullReport().c_str());
+  // Diagnostics for performance work: Ceres' own time breakdown of every local fit.
+  if (std::getenv("FRICTIONID_CERES_REPORT"))
+    std::fprintf(stderr, "%s\n", out.summary.FullReport().c_str());
   out.cost = out.summary.final_cost;
   if (!std::isfinite(out.cost)) out.cost = std::numeric_limits<double>::infinity();
   return out;
