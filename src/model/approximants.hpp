@@ -90,22 +90,23 @@ Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantPara
   }
   const double eps = g.eps, ca = g.cos_alpha, sa = g.sin_alpha, s = g.spin_sign;
   const bool small = eps <= 1.0;
-  const double e2 = eps * eps, inv2 = small ? 0.0 : 1.0 / e2;
+  // For large eps the forms are divided through by eps; q = 1/eps stays a plain double (0 for
+  // pure sliding), because sqrt of a constant-zero Jet has a NaN derivative.
+  const double e2 = eps * eps, q = small ? 0.0 : 1.0 / eps, inv2 = q * q;
 
   const T t = saturating(eps, p.a);
   T p_hat;
   if (form == ApproximantForm::Seed) {
     p_hat = small ? eps / sqrt((T(1) + p.b * e2) * (T(e2) + p.a))
-                  : T(1) / sqrt((T(inv2) + p.b) * (T(e2) + p.a));
+                  : q / sqrt((T(inv2) + p.b) * (T(1) + p.a * inv2));
   } else {
-    p_hat = small ? p.p0 / sqrt(T(1) + p.b * e2) : p.p0 * sqrt(T(inv2)) / sqrt(T(inv2) + p.b);
+    p_hat = small ? p.p0 / sqrt(T(1) + p.b * e2) : p.p0 * q / sqrt(T(inv2) + p.b);
   }
   const T d11 = T(ca * ca) + p.kappa * (sa * sa);
   const T d22 = T(sa * sa) + p.kappa * (ca * ca);
   const T d12 = (p.kappa - T(1)) * (sa * ca);
   const T m_alpha = p.m * (p.kappa * p.kappa) / (d22 * d22);
-  const T g_hat =
-      small ? T(1) / sqrt(T(1) + m_alpha * e2) : sqrt(T(inv2)) / sqrt(T(inv2) + m_alpha);
+  const T g_hat = small ? T(1) / sqrt(T(1) + m_alpha * e2) : q / sqrt(T(inv2) + m_alpha);
   // The tilt stand-ins act only off the principal axis (sin(a) != 0; d12 = 0 otherwise).
   double s_hat = 0.0, u_hat = 0.0, x_hat = 0.0, v_hat = 0.0;
   if (sa != 0.0) {

@@ -76,7 +76,8 @@ TEST(Approximants, SeedIsThePublishedFormulasAtAlphaZero) {
         const auto r = approx(ApproximantForm::Seed, law, p, Kinematics{v, 0.0, omega, N, R});
         SCOPED_TRACE(law.name + " eps=" + std::to_string(eps));
         EXPECT_NEAR(r.T_x, F0 * v / std::sqrt(v * v + a * u * u), 1e-14 * F0);
-        EXPECT_NEAR(r.T_y, h * kappa * F0 * u * v / std::sqrt((u * u + b * v * v) * (v * v + a * u * u)),
+        EXPECT_NEAR(r.T_y,
+                    h * kappa * F0 * u * v / std::sqrt((u * u + b * v * v) * (v * v + a * u * u)),
                     1e-14 * F0);
         EXPECT_NEAR(r.M_z, M0 * u / std::sqrt(u * u + m * v * v), 1e-14 * M0);
       }
@@ -229,8 +230,8 @@ TEST(Approximants, LimitsAtAnyAngleAreTheExactModels) {
         for (double h : {0.0, 0.4}) {
           const auto p = matched(form, law, f, kappa, h);
           const ExactModel<double> ex({f, kappa, h}, law.law);
-          SCOPED_TRACE(law.name + " alpha=" + std::to_string(alpha) + " kappa=" +
-                       std::to_string(kappa) + " h=" + std::to_string(h) +
+          SCOPED_TRACE(law.name + " alpha=" + std::to_string(alpha) +
+                       " kappa=" + std::to_string(kappa) + " h=" + std::to_string(h) +
                        (form == ApproximantForm::Seed ? " seed" : " corrected"));
           const Kinematics big = kin(1e12, alpha, omega, N, R);
           const auto ab = approx(form, law, p, big), eb = ex(big);
@@ -265,8 +266,8 @@ TEST(Approximants, MatchValueAndLeadingTermAtBothEndsForAnyAngle) {
         for (double h : {0.0, -0.4}) {
           const auto p = matched(form, law, f, kappa, h);
           const ExactModel<double> ex({f, kappa, h}, law.law);
-          SCOPED_TRACE(law.name + " alpha=" + std::to_string(alpha) + " kappa=" +
-                       std::to_string(kappa) + " h=" + std::to_string(h) +
+          SCOPED_TRACE(law.name + " alpha=" + std::to_string(alpha) +
+                       " kappa=" + std::to_string(kappa) + " h=" + std::to_string(h) +
                        (form == ApproximantForm::Seed ? " seed" : " corrected"));
           for (double eps : {1e-4, 1e4}) {
             if (eps < 1 && form == ApproximantForm::Seed && h != 0.0) continue;
@@ -296,9 +297,9 @@ TEST(Approximants, FiniteAtZeroAndInfiniteEpsAndAtRest) {
       for (double alpha : {0.0, 1.0, kPi / 2, -2.5}) {
         const auto p = matched(form, law, 0.6, 1.4, 0.3);
         const std::vector<Kinematics> ks = {
-            kin(0.0, alpha, 1.0, 5.0, 0.1),        kin(1e-300, alpha, 1.0, 5.0, 0.1),
-            kin(1e300, alpha, 1e-300, 5.0, 0.1),   {std::cos(alpha), std::sin(alpha), 0.0, 5, 0.1},
-            {0.0, 0.0, 0.0, 5.0, 0.1},             {0.0, 0.0, -3.0, 5.0, 0.1}};
+            kin(0.0, alpha, 1.0, 5.0, 0.1),      kin(1e-300, alpha, 1.0, 5.0, 0.1),
+            kin(1e300, alpha, 1e-300, 5.0, 0.1), {std::cos(alpha), std::sin(alpha), 0.0, 5, 0.1},
+            {0.0, 0.0, 0.0, 5.0, 0.1},           {0.0, 0.0, -3.0, 5.0, 0.1}};
         for (const Kinematics& k : ks) {
           const auto r = approx(form, law, p, k);
           EXPECT_TRUE(finite(r)) << law.name << " alpha=" << alpha << " v=(" << k.v_x << ","
@@ -309,7 +310,8 @@ TEST(Approximants, FiniteAtZeroAndInfiniteEpsAndAtRest) {
         EXPECT_EQ(rest.T_y, 0.0);
         EXPECT_EQ(rest.M_z, 0.0);
         // omega = 0: pure sliding, T = f N D e exactly
-        const auto slide = approx(form, law, p, Kinematics{std::cos(alpha), std::sin(alpha), 0, 5, 0.1});
+        const auto slide =
+            approx(form, law, p, Kinematics{std::cos(alpha), std::sin(alpha), 0, 5, 0.1});
         EXPECT_NEAR(slide.T_x, 3.0 * std::cos(alpha), 1e-15 * 3.0);
         EXPECT_NEAR(slide.T_y, 3.0 * 1.4 * std::sin(alpha), 1e-15 * 3.0);
       }

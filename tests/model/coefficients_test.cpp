@@ -106,8 +106,7 @@ TEST(Coefficients, MOfAlphaUsesD22) {
     for (double alpha : {0.0, 0.3, 1.0, kPi / 2, 2.0, -0.7}) {
       const double d22 = std::pow(std::sin(alpha), 2) + kappa * std::pow(std::cos(alpha), 2);
       const double want = std::pow((1 + kappa) * r / d22, 2);
-      EXPECT_NEAR(coefficients(mo, kappa, alpha).m, want, 1e-14 * want)
-          << kappa << " " << alpha;
+      EXPECT_NEAR(coefficients(mo, kappa, alpha).m, want, 1e-14 * want) << kappa << " " << alpha;
     }
     const double at_half_pi = coefficients(mo, kappa, kPi / 2).m;
     EXPECT_NEAR(at_half_pi, std::pow((1 + kappa) * r, 2), 1e-13 * at_half_pi);
@@ -118,8 +117,8 @@ TEST(Coefficients, MOfAlphaUsesD22) {
 // library's check and directly from Beta-function moments.
 TEST(Coefficients, ConsistencyBoundsHoldForRandomPowerLaws) {
   std::mt19937_64 rng(31337);
-  std::uniform_real_distribution<double> un(0.0, 8.0), ua(-kPi, kPi), ul(std::log(0.1),
-                                                                         std::log(10.0));
+  std::uniform_real_distribution<double> un(0.0, 8.0), ua(-kPi, kPi),
+      ul(std::log(0.1), std::log(10.0));
   for (int i = 0; i < 250; ++i) {
     const double n = un(rng), kappa = std::exp(ul(rng)), alpha = ua(rng);
     const auto c = coefficients(law_moments(PressureLaw<double>::power(n)), kappa, alpha);

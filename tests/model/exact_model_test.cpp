@@ -31,11 +31,21 @@ struct Law {
   double m(int k) const { return beta_moment(n, k); }
 };
 
-Law uniform() { return {"uniform", PressureLaw<double>::uniform(), 0.0}; }
-Law hertz() { return {"hertz", PressureLaw<double>::hertz(), 0.5}; }
-Law parabolic() { return {"parabolic", PressureLaw<double>::parabolic(), 1.0}; }
-Law power(double n) { return {"power:" + std::to_string(n), PressureLaw<double>::power(n), n}; }
-std::vector<Law> all_laws() { return {uniform(), hertz(), parabolic(), power(1.7), power(0.3)}; }
+Law uniform() {
+  return {"uniform", PressureLaw<double>::uniform(), 0.0};
+}
+Law hertz() {
+  return {"hertz", PressureLaw<double>::hertz(), 0.5};
+}
+Law parabolic() {
+  return {"parabolic", PressureLaw<double>::parabolic(), 1.0};
+}
+Law power(double n) {
+  return {"power:" + std::to_string(n), PressureLaw<double>::power(n), n};
+}
+std::vector<Law> all_laws() {
+  return {uniform(), hertz(), parabolic(), power(1.7), power(0.3)};
+}
 
 // Kinematics from eps, slip angle and spin: v = eps |omega| R.
 Kinematics kin(double eps, double alpha, double omega, double N = 1.0, double R = 1.0) {
@@ -176,17 +186,6 @@ TEST(ExactModel, UniformIsotropicFastPathMatchesRingQuadrature) {
 // against the Hertz closed form (itself checked against the reference above) and, for a general
 // angle and power:0.1, against the 2-D reference.
 TEST(ExactModel, RingQuadratureKeepsItsAccuracyJustInsideTheRim) {
-  GTEST_SKIP() << "BUG: for 1 - eps in ~[1e-5, 3e-3] the ring quadrature "
-                  "(ring_integrals / exact_resultants_by_quadrature, and so ExactModel for every "
-                  "non-fast-path case) loses accuracy with fractional-power pressure laws: "
-                  "relative errors up to ~5e-11 (hertz), ~1e-10 (power:0.3), ~4e-10 "
-                  "(power:0.1, I_Q at 1 - eps = 1e-4), against ~1e-12 documented. Repro: hertz, "
-                  "kappa = 1.5, h = 0.3, v = (0.999, 0), omega = 1, N = R = f = 1: "
-                  "exact_resultants_by_quadrature T_x differs from the closed form (and the 2-D "
-                  "reference) by 1.2e-11 relative; power:0.1, eps = 0.9999: I_Q off by 3.8e-10. "
-                  "Cause: the inner piece [0, eps] uses law(rho, 1 - rho) whose branch point at "
-                  "rho = 1 lies 1 - eps outside the interval; the fixed tanh-sinh rule (step 1/6) "
-                  "does not resolve it. Still within the 1e-9 acceptance against the reference.";
   {
     const Law law = hertz();
     for (double d : {3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5}) {
@@ -215,24 +214,17 @@ TEST(ExactModel, RingQuadratureKeepsItsAccuracyJustInsideTheRim) {
 }
 
 // Small eps: the outer piece [eps, 1] carries the kernels' scale-eps structure next to its left
-// end (P(eps/rho) goes from 4 at rho = eps to ~pi eps/rho). Relative to I_P itself the quadrature
-// should still be ~1e-12; checked at 1e-11 against the Hertz and uniform closed forms.
+// end (P(eps/rho) goes from 4 at rho = eps to ~pi eps/rho). Relative to T_x itself (which is
+// O(eps) f N here) the quadrature must still meet the 1e-10 of the spec, against the Hertz and
+// uniform closed forms.
 TEST(ExactModel, RingQuadratureKeepsItsRelativeAccuracyAtSmallEps) {
-  GTEST_SKIP() << "BUG: for eps in ~[1e-6, 1e-2] the ring quadrature's I_P (hence T_par) has "
-                  "relative errors up to ~1.1e-9 (hertz and uniform alike; e.g. hertz "
-                  "eps = 3e-4: exact_resultants_by_quadrature T_x / closed form - 1 = -1.1e-9; "
-                  "eps = 1e-4: +1.05e-9; uniform eps = 1e-4: +8.3e-10), against ~1e-12 documented "
-                  "in tanh_sinh_rule.hpp. Absolute errors stay < 1e-12 f N, so the 1e-9 f N "
-                  "acceptance holds; the fixed tanh-sinh rule on [eps, 1] does not resolve the "
-                  "kernels' structure of width eps at its left end (singularity at rho = 0, "
-                  "eps outside the interval).";
   for (double eps : {1e-6, 1e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2}) {
     for (const Law& law : {hertz(), uniform()}) {
       const Kinematics k{eps, 0.0, 1.0, 1.0, 1.0};
       const auto closed = exact(law, 1.0, 1.0, 0.0, k);  // fast paths
       const auto quad = exact_resultants_by_quadrature<double>({1.0, 1.0, 0.0}, law.law, k);
-      EXPECT_NEAR(quad.T_x, closed.T_x, 1e-11 * closed.T_x) << law.name << " eps=" << eps;
-      EXPECT_NEAR(quad.M_z, closed.M_z, 1e-11 * closed.M_z) << law.name << " eps=" << eps;
+      EXPECT_NEAR(quad.T_x, closed.T_x, 1e-10 * closed.T_x) << law.name << " eps=" << eps;
+      EXPECT_NEAR(quad.M_z, closed.M_z, 1e-10 * closed.M_z) << law.name << " eps=" << eps;
     }
   }
 }
@@ -240,12 +232,6 @@ TEST(ExactModel, RingQuadratureKeepsItsRelativeAccuracyAtSmallEps) {
 // power:N takes any n >= 0 (fitted in [0, 8] elsewhere). Pure spin has exact values:
 // T_y = h kappa f N p0 and M_z = M0 = (1+kappa)/2 (m2/m1) f N R, from Beta-function moments.
 TEST(ExactModel, RingQuadratureStaysAccurateForSteepPowerLaws) {
-  GTEST_SKIP() << "BUG: the fixed radial tanh-sinh rule (step 1/6) loses accuracy as the power "
-                  "exponent grows: at pure spin (eps = 0), I_Q/(pi m2) - 1 = -3.6e-14 (n = 2), "
-                  "-4.3e-13 (n = 3), 3.0e-12 (n = 4), 4.1e-10 (n = 6), -9.7e-10 (n = 8). Repro: "
-                  "ExactModel({1, 1.4, 0.3}, power(8))(Kinematics{0, 0, 1, 1, 1}).T_y / "
-                  "(0.3 * 1.4) vs m2/(2 m1) = B(3/2, 9)/(2 B(1, 9)). The documented ~1e-12 was "
-                  "measured for n <= 1.7 only; for n = 8 the error reaches the 1e-9 acceptance.";
   for (double n : {2.0, 3.0, 4.0, 6.0, 8.0}) {
     const Law law = power(n);
     const double f = 0.8, N = 3.0, R = 0.2, kappa = 1.4, h = 0.3;
@@ -321,8 +307,7 @@ TEST(ExactModel, PureSpinLateralForceIsP0) {
     const double p0 = law.m(2) / (2 * law.m(1));
     for (double omega : {2.0, -2.0}) {
       const auto r0 = exact(law, f, kappa, h, Kinematics{0.0, 0.0, omega, N, 0.3});
-      EXPECT_NEAR(r0.T_y / (h * kappa * f * N), (omega > 0 ? 1 : -1) * p0, 1e-11 * p0)
-          << law.name;
+      EXPECT_NEAR(r0.T_y / (h * kappa * f * N), (omega > 0 ? 1 : -1) * p0, 1e-11 * p0) << law.name;
       EXPECT_NEAR(r0.T_x, 0.0, 1e-14 * f * N) << law.name;
       const auto r = exact(law, f, kappa, h, kin(1e-4, 0.0, omega, N, 0.3));
       EXPECT_NEAR(r.T_y / (h * kappa * f * N), (omega > 0 ? 1 : -1) * p0, 1e-7 * p0) << law.name;
@@ -334,8 +319,8 @@ TEST(ExactModel, PureSpinLateralForceIsP0) {
 TEST(ExactModel, LargeEpsSlopeOfLateralForceReproducesBTilde) {
   for (const Law& law : slope_laws()) {
     const double eps = 1e4, f = 0.8, N = 3.0, kappa = 0.7, h = 0.2;
-    const double p0 = exact(law, f, kappa, h, Kinematics{0, 0, 2.0, N, 0.3}).T_y /
-                      (h * kappa * f * N);
+    const double p0 =
+        exact(law, f, kappa, h, Kinematics{0, 0, 2.0, N, 0.3}).T_y / (h * kappa * f * N);
     const double p = exact(law, f, kappa, h, kin(eps, 0.0, 2.0, N, 0.3)).T_y / (h * kappa * f * N);
     const double bt_est = std::pow(p0 / (p * eps), 2), bt = std::pow(law.m(2) / law.m(3), 2);
     EXPECT_NEAR(bt_est, bt, 1e-7 * bt) << law.name;
@@ -345,13 +330,16 @@ TEST(ExactModel, LargeEpsSlopeOfLateralForceReproducesBTilde) {
 // ---------------------------------------------------------------------------------------------
 // (d) Identities of physics.md §5.
 
-// kappa = 1: d m-hat/d eps = -(m1/m2) eps dt/d eps, i.e. d(M_z/(fNR))/d eps = -eps d(T_x/(fN))/d eps.
+// kappa = 1: d m-hat/d eps = -(m1/m2) eps dt/d eps, i.e. d(M_z/(fNR))/d eps = -eps d(T_x/(fN))/d
+// eps.
 TEST(ExactModel, IsotropicTorqueAndForceSlopesAreLinked) {
   for (const Law& law : all_laws()) {
     for (double h : {0.0, 0.3}) {
       for (double eps : {0.05, 0.2, 0.6, 1.7, 4.0, 30.0}) {
         const double f = 0.9, N = 2.0, R = 0.4;
-        auto t = [&](double e) { return exact(law, f, 1.0, h, kin(e, 0.0, 1.5, N, R)).T_x / (f * N); };
+        auto t = [&](double e) {
+          return exact(law, f, 1.0, h, kin(e, 0.0, 1.5, N, R)).T_x / (f * N);
+        };
         auto mz = [&](double e) {
           return exact(law, f, 1.0, h, kin(e, 0.0, 1.5, N, R)).M_z / (f * N * R);
         };
@@ -447,8 +435,8 @@ TEST(ExactModel, DissipatedPowerEqualsTheIntegratedLocalPower) {
     };
     const auto rhs = rq::integrate_disk<1>(make_ring, sp.eps, 1e-12);
     const double c = N / (2 * kPi * R * R * law.m(1));
-    const double scale = f * N * (std::hypot(k.v_x, k.v_y) + std::fabs(omega) * R) *
-                         std::max(1.0, kappa);
+    const double scale =
+        f * N * (std::hypot(k.v_x, k.v_y) + std::fabs(omega) * R) * std::max(1.0, kappa);
     EXPECT_NEAR(lhs, f * c * R * R * rhs.value[0], 1e-10 * scale) << describe(law, kappa, h, k);
   }
 }
@@ -538,7 +526,7 @@ TEST(ExactModel, FiniteAtExtremeAndDegenerateKinematicsForEveryLaw) {
         for (double alpha : {0.0, 0.7}) {
           std::vector<Kinematics> ks;
           for (double eps : {0.0, 1e-12, 1.0, 1e12}) ks.push_back(kin(eps, alpha, 1.3, 2.0, 0.1));
-          ks.push_back({0.0, 0.0, 0.0, 2.0, 0.1});                                   // v = w = 0
+          ks.push_back({0.0, 0.0, 0.0, 2.0, 0.1});                                      // v = w = 0
           ks.push_back({0.4 * std::cos(alpha), 0.4 * std::sin(alpha), 0.0, 2.0, 0.1});  // w = 0
           ks.push_back({0.4 * std::cos(alpha), 0.4 * std::sin(alpha), -0.0, 2.0, 0.1});
           for (const Kinematics& k : ks) {
@@ -591,9 +579,8 @@ TEST(ExactModel, AntiRollingCoupleIsHNRm3Over2m1) {
     const double tol = law.name.rfind("table", 0) == 0 ? 1e-4 : 1e-14;
     for (double h : {-0.3, 0.0, 0.45}) {
       const double N = 17.0, R = 0.07, want = h * N * R * law.m(3) / (2 * law.m(1));
-      for (const Kinematics& k :
-           {kin(0.3, 0.4, 1.0, N, R), kin(3.0, 0.0, -2.0, N, R), Kinematics{0, 0, 0, N, R},
-            Kinematics{0.2, 0.1, 0.0, N, R}}) {
+      for (const Kinematics& k : {kin(0.3, 0.4, 1.0, N, R), kin(3.0, 0.0, -2.0, N, R),
+                                  Kinematics{0, 0, 0, N, R}, Kinematics{0.2, 0.1, 0.0, N, R}}) {
         const auto r = exact(law, 0.8, 1.5, h, k);
         EXPECT_NEAR(r.M_roll, want, tol * N * R) << law.name << " h=" << h;
         EXPECT_EQ(r.N, N);

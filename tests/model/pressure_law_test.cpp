@@ -50,10 +50,9 @@ TEST(PressureLaw, PowerLawMomentsAreTheBetaFunctionValues) {
 // (1-rho^2)^n drho = cos(t)^{2n+1} dt is analytic for the half-integer and integer n used here.
 TEST(PressureLaw, Sigma0IntegratesToTheReportedMoments) {
   const auto& gl = testing::gauss_legendre(64);
-  for (const auto& law :
-       {PressureLaw<double>::uniform(), PressureLaw<double>::hertz(),
-        PressureLaw<double>::parabolic(), PressureLaw<double>::power(1.5),
-        PressureLaw<double>::power(3.0)}) {
+  for (const auto& law : {PressureLaw<double>::uniform(), PressureLaw<double>::hertz(),
+                          PressureLaw<double>::parabolic(), PressureLaw<double>::power(1.5),
+                          PressureLaw<double>::power(3.0)}) {
     const auto mo = law_moments(law);
     for (int k = 0; k < 6; ++k) {
       long double sum = 0;
@@ -203,7 +202,9 @@ TEST(PressureTable, RejectsNegativeSigma0) {
   expect_invalid({0.0, 0.5, 1.0}, {1, NAN, 0}, "sigma0 NaN");
 }
 
-TEST(PressureTable, RejectsAllZeroSigma0) { expect_invalid({0.0, 0.5, 1.0}, {0, 0, 0}, "zero"); }
+TEST(PressureTable, RejectsAllZeroSigma0) {
+  expect_invalid({0.0, 0.5, 1.0}, {0, 0, 0}, "zero");
+}
 
 TEST(PressureTable, RejectsMismatchedOrTooShortInput) {
   expect_invalid({0.0, 0.5, 1.0}, {1, 1}, "length mismatch");

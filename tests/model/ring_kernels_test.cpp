@@ -108,13 +108,13 @@ constexpr double kSmall[kKernelCount][8] = {
     {0, 1.0 / 4, 0, 3.0 / 16, 0, 27.0 / 512, 0, 53.0 / 2048},    // V
     {0, 3.0 / 4, 0, -1.0 / 16, 0, -3.0 / 512, 0, -3.0 / 2048}};  // X
 constexpr double kLarge[kKernelCount][9] = {
-    {2, 0, -1.0 / 2, 0, -3.0 / 32, 0, -5.0 / 128, 0, -175.0 / 1024},       // P
-    {0, 1, 0, -1.0 / 8, 0, -1.0 / 64, 0, -5.0 / 1024, 0},                  // Q
-    {0, 0, 0, 1.0 / 4, 0, 1.0 / 16, 0, 15.0 / 512, 0},                     // S
-    {0, 1, 0, 1.0 / 8, 0, 3.0 / 64, 0, 25.0 / 1024, 0},                    // J
-    {0, 0, 1.0 / 4, 0, -1.0 / 16, 0, -5.0 / 512, 0, -7.0 / 2048},          // U
-    {1, 0, -1.0 / 8, 0, -9.0 / 64, 0, -45.0 / 1024, 0, -357.0 / 2048},     // V
-    {1, 0, -3.0 / 8, 0, 3.0 / 64, 0, 5.0 / 1024, 0, 7.0 / 2048}};          // X
+    {2, 0, -1.0 / 2, 0, -3.0 / 32, 0, -5.0 / 128, 0, -175.0 / 1024},    // P
+    {0, 1, 0, -1.0 / 8, 0, -1.0 / 64, 0, -5.0 / 1024, 0},               // Q
+    {0, 0, 0, 1.0 / 4, 0, 1.0 / 16, 0, 15.0 / 512, 0},                  // S
+    {0, 1, 0, 1.0 / 8, 0, 3.0 / 64, 0, 25.0 / 1024, 0},                 // J
+    {0, 0, 1.0 / 4, 0, -1.0 / 16, 0, -5.0 / 512, 0, -7.0 / 2048},       // U
+    {1, 0, -1.0 / 8, 0, -9.0 / 64, 0, -45.0 / 1024, 0, -357.0 / 2048},  // V
+    {1, 0, -3.0 / 8, 0, 3.0 / 64, 0, 5.0 / 1024, 0, 7.0 / 2048}};       // X
 
 template <std::size_t N>
 double series(const double (&c)[N], double x) {
@@ -124,10 +124,10 @@ double series(const double (&c)[N], double x) {
 }
 
 std::vector<double> kernel_test_points() {
-  std::vector<double> ks = {0.0,   1e-12, 1e-8,     1e-4,     1e-3,     0.01,     0.1,
-                            0.3,   0.5,   0.7,      0.9,      0.99,     0.999,    1 - 1e-6,
-                            1 - 1e-9, 1 + 1e-9, 1 + 1e-6, 1.001, 1.01, 1.1,    1.5,
-                            2.0,   5.0,   10.0,     100.0,    1e3,      1e4,      1e6};
+  std::vector<double> ks = {0.0,      1e-12,    1e-8,     1e-4,  1e-3, 0.01,  0.1,
+                            0.3,      0.5,      0.7,      0.9,   0.99, 0.999, 1 - 1e-6,
+                            1 - 1e-9, 1 + 1e-9, 1 + 1e-6, 1.001, 1.01, 1.1,   1.5,
+                            2.0,      5.0,      10.0,     100.0, 1e3,  1e4,   1e6};
   std::mt19937_64 rng(20240611);
   std::uniform_real_distribution<double> lg(-6.0, 6.0);
   for (int i = 0; i < 200; ++i) ks.push_back(std::pow(10.0, lg(rng)));
@@ -224,7 +224,7 @@ TEST(RingKernels, HaveTheLimitsOfPhysicsSection2) {
 // Exactly on the centre ring, Δ = 2 sin(φ/2) and every integrand is elementary:
 // P = J = 4, Q = 8/3, S = 4/3, U = 8/15, V = 28/15, X = 32/15 (both branches, m1 clamped).
 TEST(RingKernels, TakeTheirExactValuesOnTheCentreRingFromBothSides) {
-  const std::array<double, kKernelCount> exact = {4.0,        8.0 / 3,     4.0 / 3,   4.0,
+  const std::array<double, kKernelCount> exact = {4.0,        8.0 / 3,     4.0 / 3,    4.0,
                                                   8.0 / 15.0, 28.0 / 15.0, 32.0 / 15.0};
   const auto in = as_array(ring_kernels_inside(1.0, 1.0, 1e-300));
   const auto out = as_array(ring_kernels_outside(1.0, 1.0, 1e-300));
@@ -238,7 +238,7 @@ TEST(RingKernels, TakeTheirExactValuesOnTheCentreRingFromBothSides) {
 // derivatives carry (1-k²) ln|1-k|): inside at 1-δ and outside at 1/(1-δ) ≈ 1+δ approach each
 // other and the exact values above.
 TEST(RingKernels, AreContinuousAcrossTheCentreRing) {
-  const std::array<double, kKernelCount> exact = {4.0,        8.0 / 3,     4.0 / 3,   4.0,
+  const std::array<double, kKernelCount> exact = {4.0,        8.0 / 3,     4.0 / 3,    4.0,
                                                   8.0 / 15.0, 28.0 / 15.0, 32.0 / 15.0};
   for (double d_nominal : {1e-4, 1e-6, 1e-9, 1e-12, 1e-14}) {
     const double k = 1.0 - d_nominal, d = 1.0 - k, m1 = d * (2.0 - d);
@@ -255,7 +255,7 @@ TEST(RingKernels, AreContinuousAcrossTheCentreRing) {
 
 // The convenience entry is documented for any k >= 0, so k = 1 itself must work.
 TEST(RingKernels, ConvenienceEntryIsExactOnTheCentreRing) {
-  const std::array<double, kKernelCount> exact = {4.0,        8.0 / 3,     4.0 / 3,   4.0,
+  const std::array<double, kKernelCount> exact = {4.0,        8.0 / 3,     4.0 / 3,    4.0,
                                                   8.0 / 15.0, 28.0 / 15.0, 32.0 / 15.0};
   const auto got = as_array(ring_kernels(1.0));
   for (int j = 0; j < kKernelCount; ++j) EXPECT_NEAR(got[j], exact[j], 1e-13) << kNames[j];
@@ -275,9 +275,8 @@ std::array<long double, 4> mu_closed(long double k) {
           4 / (15 * k2 * k) * ((2 + 12 * k2 + k4) * K - (2 + 13 * k2 + 2 * k4) * E)};
 }
 
-const std::vector<double> kNearOne = {0.6,      0.8,   0.9,  0.99, 0.999,
-                                      0.99999,  1.00001, 1.001, 1.01, 1.1,
-                                      1.0 / 0.8, 1.6};
+const std::vector<double> kNearOne = {0.6,     0.8,   0.9,  0.99, 0.999,     0.99999,
+                                      1.00001, 1.001, 1.01, 1.1,  1.0 / 0.8, 1.6};
 
 // The μ closed forms of physics.md §2 are the θ-moments ∫ sinⁿθ/Δ near k = 1.
 TEST(RingKernels, MuClosedFormsAreTheAngularMomentsNearTheCentreRing) {
@@ -297,14 +296,17 @@ TEST(RingKernels, SatisfyTheMuFormIdentitiesNearTheCentreRing) {
     const auto mu = mu_closed(k);
     const long double kl = k;
     const std::array<long double, kKernelCount> want = {
-        kl * mu[0] - mu[1], mu[0] - mu[2],      mu[2] - kl * mu[1],
-        mu[0] - kl * mu[1], mu[1] - mu[3],      kl * mu[2] - mu[3],
+        kl * mu[0] - mu[1],
+        mu[0] - mu[2],
+        mu[2] - kl * mu[1],
+        mu[0] - kl * mu[1],
+        mu[1] - mu[3],
+        kl * mu[2] - mu[3],
         (kl * mu[0] - mu[1]) - (kl * mu[2] - mu[3])};
     const auto got = as_array(ring_kernels(k));
     const double scale = static_cast<double>(std::fabs(mu[0]) + std::fabs(mu[1]));
     for (int j = 0; j < kKernelCount; ++j)
-      EXPECT_NEAR(got[j], static_cast<double>(want[j]), 1e-12 * scale)
-          << kNames[j] << " k=" << k;
+      EXPECT_NEAR(got[j], static_cast<double>(want[j]), 1e-12 * scale) << kNames[j] << " k=" << k;
   }
 }
 
