@@ -12,6 +12,7 @@
 #include <memory>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "identify/global_search.hpp"
 #include "identify/residuals.hpp"
@@ -34,12 +35,38 @@ struct BlockCost {
   double loss_scale;
   const std::vector<int>* free;
   Params base;
+  int threads = 1;
+
+  // Rows are split into contiguous slices, one per thread, each writing its own residuals:
+  // the arithmetic is the same whatever the thread count, so results are bit-identical.
+  // (Ceres' own threads sum partial costs in scheduling order, so they stay at one.)
   template <typename T>
   bool operator()(const T* z, T* r) const {
     std::array<T, kParamCount> full;
     for (int i = 0; i < kParamCount; ++i) full[i] = T(base[i]);
     for (std::size_t j = 0; j < free->size(); ++j) full[(*free)[j]] = z[j];
-    return evaluate_residuals(rows, kind, *law, loss, loss_scale, full.data(), r);
+    const std::size_t n = rows.end - rows.begin;
+    const std::size_t parts =
+        std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), n / 128 + 1);
+    if (parts <= 1) return evaluate_residuals(rows, kind, *law, loss, loss_scale, full.data(), r);
+    std::vector<std::thread> pool;
+    std::vector<char> ok(parts, 0);
+    const std::size_t nc = rows.channels.size();
+    for (std::size_t t = 0; t < parts; ++t) {
+      ResidualRows slice = rows;
+      slice.begin = rows.begin + n * t / parts;
+      slice.end = rows.begin + n * (t + 1) / parts;
+      T* out = r + (slice.begin - rows.begin) * nc;
+      auto work = [this, slice, out, &full, &ok, t] {
+        ok[t] = evaluate_residuals(slice, kind, *law, loss, loss_scale, full.data(), out);
+      };
+      if (t + 1 == parts)
+        work();
+      else
+        pool.emplace_back(work);
+    }
+    for (auto& th : pool) th.join();
+    return std::all_of(ok.begin(), ok.end(), [](char v) { return v != 0; });
   }
 };
 
@@ -169,10 +196,11 @@ LocalOutcome local_fit(const Problem& p, const Params& start, const std::atomic<
   std::vector<double> z;
   for (int i : p.free) z.push_back(out.x[i]);
   for (const auto& b : p.blocks)
-    problem.AddResidualBlock(make_cost_function(BlockCost{b, p.s->model, &p.s->law, p.s->loss,
-                                                          p.s->loss_scale, &p.free, out.x})
-                                 .release(),
-                             nullptr, z.data());
+    problem.AddResidualBlock(
+        make_cost_function(BlockCost{b, p.s->model, &p.s->law, p.s->loss, p.s->loss_scale, &p.free,
+                                     out.x, p.s->threads})
+            .release(),
+        nullptr, z.data());
   for (std::size_t j = 0; j < p.free.size(); ++j) {
     problem.SetParameterLowerBound(z.data(), static_cast<int>(j), p.s->params[p.free[j]].lower);
     problem.SetParameterUpperBound(z.data(), static_cast<int>(j), p.s->params[p.free[j]].upper);
@@ -188,7 +216,7 @@ LocalOutcome local_fit(const Problem& p, const Params& start, const std::atomic<
   o.function_tolerance = p.s->function_tolerance;
   o.gradient_tolerance = p.s->gradient_tolerance;
   o.parameter_tolerance = p.s->parameter_tolerance;
-  o.num_threads = std::max(1, p.s->threads);
+  o.num_threads = 1;  // see BlockCost: our own row slices keep results thread-count invariant
   o.logging_type = ceres::SILENT;
   o.minimizer_progress_to_stdout = false;
   Callback cb(cancel, p.s->progress, start_index, starts);
@@ -404,7 +432,7 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
       rr.assign(n, 0.0);
       std::vector<double> z;
       for (int i : p.free) z.push_back(x[i]);
-      const BlockCost cost{b, s.model, &s.law, s.loss, s.loss_scale, &p.free, x};
+      const BlockCost cost{b, s.model, &s.law, s.loss, s.loss_scale, &p.free, x, s.threads};
       if (k == 0) {
         if (!evaluate_residuals(b, s.model, s.law, s.loss, s.loss_scale, x.data(), rr.data()))
           throw FitError("the model is not finite at the fitted parameters");

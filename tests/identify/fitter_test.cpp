@@ -148,6 +148,20 @@ TEST(Fitter, SameInputAndSeedGiveAByteIdenticalReport) {
   EXPECT_EQ(a.find("NaN"), std::string::npos);
 }
 
+TEST(Fitter, ReportIsByteIdenticalWithOneOrTwoSolverThreads) {
+  const Law law = Law::hertz();
+  SyntheticDesign design;
+  design.rows = 6000;  // several residual blocks, so two threads really split the work
+  const Dataset d = generate_dataset(ModelKind::Seed, law, truth_params(law), design,
+                                     NoiseSpec{0.01, 0.0, false}, 21);
+  FitSettings s = settings_for(ModelKind::Seed, law);
+  s.global_evaluations = 300;
+  s.threads = 1;
+  const std::string one = report_json(Fitter(s).fit(d)).dump(2);
+  s.threads = 2;
+  EXPECT_EQ(report_json(Fitter(s).fit(d)).dump(2), one);
+}
+
 TEST(Fitter, RequestedChannelThatNoRowMeasuresIsReportedNotFitted) {
   const Law law = Law::hertz();
   Dataset d =
