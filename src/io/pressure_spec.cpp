@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <stdexcept>
@@ -26,9 +27,39 @@ bool parse_field(const std::string& text, double& out) {
   return end == t.c_str() + t.size() && errno != ERANGE && std::isfinite(out);
 }
 
+// The text quoted for a message: cut at 60 bytes, control characters shown as \xNN, so that a
+// huge or binary line still gives a one-line message.
+std::string shown(const std::string& text) {
+  constexpr std::size_t kMax = 60;
+  std::string out = "'";
+  for (const char c : text.substr(0, kMax)) {
+    const auto u = static_cast<unsigned char>(c);
+    if ((u < 0x20 && c != '\t') || u == 0x7f) {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += {'\\', 'x', kHex[u >> 4], kHex[u & 15]};
+    } else {
+      out += c;
+    }
+  }
+  return out + (text.size() > kMax ? "...'" : "'");
+}
+
+// The coefficients divide by the law's moments: a law whose moments overflow or underflow
+// (sigma0 near the double range, rho samples too close for their sigma0 step, a huge exponent)
+// is rejected here instead of turning into NaN downstream.
+bool moments_finite_and_positive(const model::PressureLaw<double>& law) {
+  const auto m = model::law_moments(law);
+  for (int k = 0; k < 6; ++k)
+    if (!(std::isfinite(m[k]) && m[k] > 0.0)) return false;
+  return true;
+}
+
 }  // namespace
 
 model::PressureLaw<double> load_pressure_table(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path, 0, 0, "is a directory; expected a pressure table file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, 0, "cannot open the pressure table file");
   std::vector<double> rho, sigma;
@@ -40,6 +71,10 @@ model::PressureLaw<double> load_pressure_table(const std::string& path) {
     ++lineno;
     if (lineno == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find('\r') != std::string::npos)
+      throw InputError(path, lineno, 0,
+                       "the line contains a carriage return (CR): the file seems to use CR-only "
+                       "(classic Mac) line ends; expected LF or CRLF line ends");
     if (line.find_first_not_of(" \t") == std::string::npos || line[0] == '#') continue;
     if (!header_seen) {
       header_seen = true;
@@ -53,14 +88,14 @@ model::PressureLaw<double> load_pressure_table(const std::string& path) {
     const auto comma = line.find(',');
     if (comma == std::string::npos || line.find(',', comma + 1) != std::string::npos)
       throw InputError(path, lineno, 1,
-                       "expected two comma-separated fields 'rho,sigma0', found '" + line + "'");
+                       "expected two comma-separated fields 'rho,sigma0', found " + shown(line));
     double r, s;
     if (!parse_field(line.substr(0, comma), r))
       throw InputError(path, lineno, 1,
-                       "rho: expected a finite number, found '" + line.substr(0, comma) + "'");
+                       "rho: expected a finite number, found " + shown(line.substr(0, comma)));
     if (!parse_field(line.substr(comma + 1), s))
       throw InputError(path, lineno, 2,
-                       "sigma0: expected a finite number, found '" + line.substr(comma + 1) + "'");
+                       "sigma0: expected a finite number, found " + shown(line.substr(comma + 1)));
     rho.push_back(r);
     sigma.push_back(s);
     lines.push_back(lineno);
@@ -68,7 +103,13 @@ model::PressureLaw<double> load_pressure_table(const std::string& path) {
   if (!header_seen) throw InputError(path, 0, 0, "the pressure table is empty");
   try {
     auto table = std::make_shared<const model::PressureTable>(rho, sigma);
-    return model::PressureLaw<double>::tabulated(std::move(table));
+    auto law = model::PressureLaw<double>::tabulated(std::move(table));
+    if (!moments_finite_and_positive(law))
+      throw InputError(path, 0, 0,
+                       "the interpolated law's moments are not finite (sigma0 too close to the "
+                       "double range, or rho samples too close together for their step in "
+                       "sigma0); expected moderate sigma0 values, e.g. scaled to a maximum of 1");
+    return law;
   } catch (const std::invalid_argument& e) {
     // Map "sample i: ..." back to the file line of that sample.
     const std::string what = e.what();
@@ -95,7 +136,11 @@ model::PressureLaw<double> parse_pressure_law(const std::string& spec) {
     if (!parse_field(spec.substr(6), n))
       throw InputError("--pressure " + spec + ": power:N needs a finite number N");
     if (n < 0.0) throw InputError("--pressure " + spec + ": power:N needs N >= 0");
-    return Law::power(n);
+    const Law law = Law::power(n);
+    if (!moments_finite_and_positive(law))
+      throw InputError("--pressure " + spec +
+                       ": the law's moments underflow for so large an N; expected a moderate N");
+    return law;
   }
   if (spec.rfind("table:", 0) == 0) {
     if (spec.size() == 6) throw InputError("--pressure table:FILE needs a file name");

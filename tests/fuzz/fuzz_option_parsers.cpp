@@ -1,0 +1,95 @@
+// libFuzzer target: the option-value parsers (--param, --fix, --bounds, --channels, --columns,
+// numbers, power:N) on the input as text, and the pressure-table reader (table:FILE) on the input
+// as a file. Rejections must be InputError; accepted values must satisfy the documented contract.
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "fuzz_support.hpp"
+#include "io/dataset_csv.hpp"
+#include "io/input_error.hpp"
+#include "io/option_parsers.hpp"
+#include "io/pressure_spec.hpp"
+
+namespace {
+
+template <typename F>
+void expect_input_error_or_success(F&& f) {
+  try {
+    f();
+  } catch (const frictionid::InputError& e) {
+    FRICTIONID_FUZZ_CHECK(e.what()[0] != '\0');
+  }
+}
+
+bool is_name(const std::string& s) {
+  if (s.empty()) return false;
+  for (char c : s)
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_'))
+      return false;
+  return true;
+}
+
+// An accepted pressure law is finite and non-negative across the spot and has finite, positive
+// moments (the coefficients divide by them).
+void check_law(const frictionid::model::PressureLaw<double>& law) {
+  for (double rho : {0.0, 0.25, 0.5, 0.75, 0.999, 1.0}) {
+    const double s = law(rho, 1.0 - rho);
+    FRICTIONID_FUZZ_CHECK(std::isfinite(s) && s >= 0);
+  }
+  const auto m = frictionid::model::law_moments(law);
+  for (int k = 0; k < 6; ++k) FRICTIONID_FUZZ_CHECK(std::isfinite(m[k]) && m[k] > 0);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+
+  expect_input_error_or_success([&] {
+    for (const auto& [name, value] : frictionid::parse_assignments("--param", text)) {
+      FRICTIONID_FUZZ_CHECK(is_name(name));
+      FRICTIONID_FUZZ_CHECK(std::isfinite(value));
+    }
+  });
+  expect_input_error_or_success([&] {
+    for (const auto& [name, range] : frictionid::parse_bounds("--bounds", text)) {
+      FRICTIONID_FUZZ_CHECK(is_name(name));
+      FRICTIONID_FUZZ_CHECK(std::isfinite(range.first) && std::isfinite(range.second));
+      FRICTIONID_FUZZ_CHECK(range.first < range.second);
+    }
+  });
+  expect_input_error_or_success([&] {
+    for (const auto& name : frictionid::parse_name_list("--channels", text))
+      FRICTIONID_FUZZ_CHECK(is_name(name));
+  });
+  expect_input_error_or_success([&] { frictionid::parse_column_map(text); });
+  expect_input_error_or_success([&] {
+    const double x = frictionid::parse_number("--vx", text);
+    FRICTIONID_FUZZ_CHECK(std::isfinite(x));
+  });
+  {
+    // Accepted numbers are finite and round-trip bit-identically through %.17g.
+    double x = 0;
+    if (frictionid::parse_double_strict(text, x) == nullptr) {
+      FRICTIONID_FUZZ_CHECK(std::isfinite(x));
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.17g", x);
+      double y = 0;
+      FRICTIONID_FUZZ_CHECK(frictionid::parse_double_strict(buf, y) == nullptr);
+      FRICTIONID_FUZZ_CHECK(std::memcmp(&x, &y, sizeof x) == 0);
+    }
+  }
+  expect_input_error_or_success([&] {
+    const auto law = frictionid::parse_pressure_law("power:" + text);
+    FRICTIONID_FUZZ_CHECK(std::isfinite(law.n) && law.n >= 0);
+    check_law(law);
+  });
+
+  static frictionid::fuzz::ScratchFile table(".csv");
+  const std::string spec = "table:" + table.write(data, size);
+  expect_input_error_or_success([&] { check_law(frictionid::parse_pressure_law(spec)); });
+  return 0;
+}
