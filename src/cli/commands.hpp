@@ -67,4 +67,18 @@ struct CompareOptions {
 };
 int run_compare(const CompareOptions& o);
 
+struct SimulateOptions {
+  std::string model = "exact";
+  std::string pressure = "uniform";  // a flat rigid body on a plane
+  std::string params;
+  std::optional<double> inertia_ratio;  // I/(M_b R^2), required
+  double v0 = 1.0, omega0 = 1.0, slip_angle_deg = 0.0;
+  double mass = 1.0, R = 1.0;
+  std::optional<double> N;  // default M_b g
+  std::string output;
+  double tol = 1e-10, stop_fraction = 1e-12;
+  long max_steps = 200000;
+};
+int run_simulate(const SimulateOptions& o);
+
 }  // namespace frictionid::cli

@@ -110,6 +110,30 @@ void add_compare(CLI::App& app, CompareOptions& o) {
   add_fit_options(c, o.fit);
 }
 
+void add_simulate(CLI::App& app, SimulateOptions& o) {
+  auto* c = app.add_subcommand(
+      "simulate", "Slide and spin a flat body to rest under a model's friction (physics §4)");
+  c->add_option("--model", o.model, "seed, corrected or exact")->capture_default_str();
+  c->add_option("--pressure", o.pressure, kLawHelp)->capture_default_str();
+  c->add_option("--param", o.params, "friction parameters f=..,kappa=..,h=..[,a=..,...] as eval");
+  c->add_option("--inertia-ratio", o.inertia_ratio,
+                "I/(M_b R^2): 0.5 uniform disk, 1 thin ring (required)");
+  c->add_option("--v0", o.v0, "initial slip speed [m/s]")->capture_default_str();
+  c->add_option("--omega0", o.omega0, "initial spin [rad/s]")->capture_default_str();
+  c->add_option("--slip-angle", o.slip_angle_deg, "initial slip direction from x [deg]")
+      ->capture_default_str();
+  c->add_option("--mass", o.mass, "body mass M_b [kg]")->capture_default_str();
+  c->add_option("--R", o.R, "contact radius [m]")->capture_default_str();
+  c->add_option("--N", o.N, "normal load [N] (default M_b g, g = 9.81)");
+  c->add_option("--output", o.output, "trajectory CSV: t,v_x,v_y,omega,eps,T_x,T_y,M_z,energy");
+  c->add_option("--tol", o.tol, "integrator tolerance (relative and absolute)")
+      ->capture_default_str();
+  c->add_option("--stop-fraction", o.stop_fraction,
+                "end when |(v, omega R)| falls below this fraction of its start")
+      ->capture_default_str();
+  c->add_option("--max-steps", o.max_steps, "step limit")->capture_default_str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -128,6 +152,8 @@ int main(int argc, char** argv) {
   add_fit(app, fit);
   CompareOptions compare;
   add_compare(app, compare);
+  SimulateOptions simulate;
+  add_simulate(app, simulate);
 
   try {
     app.parse(argc, argv);
@@ -148,6 +174,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("generate")) return run_generate(generate);
     if (app.got_subcommand("fit")) return run_fit(fit);
     if (app.got_subcommand("compare")) return run_compare(compare);
+    if (app.got_subcommand("simulate")) return run_simulate(simulate);
   } catch (const frictionid::InputError& e) {
     std::fprintf(stderr, "frictionid: error: %s\n", e.what());
     return kExitBadInput;

@@ -1,0 +1,102 @@
+// frictionid simulate through the built executable (FRICTIONID_EXE, set by ctest): the JSON
+// summary, the trajectory CSV and exit code 2 on invalid options.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int code;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+RunResult run(const std::string& args) {
+  const char* exe = std::getenv("FRICTIONID_EXE");
+  if (!exe) return {-1, "", "FRICTIONID_EXE not set"};
+  const fs::path err_file =
+      fs::temp_directory_path() / ("frictionid_simulate_err_" + std::to_string(::getpid()));
+  const std::string cmd = std::string(exe) + " " + args + " 2>" + err_file.string();
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  const int status = pclose(p);
+  std::ifstream in(err_file);
+  std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  fs::remove(err_file);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out, err};
+}
+
+TEST(CliSimulate, UniformDiskPrintsTheSummaryAndWritesTheTrajectory) {
+  const fs::path d =
+      fs::temp_directory_path() / ("frictionid_cli_simulate_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  const fs::path csv = d / "traj.csv";
+  const RunResult r =
+      run("simulate --model exact --pressure uniform --param f=0.3 --inertia-ratio 0.5 --v0 2 "
+          "--omega0 5 --mass 2 --R 0.5 --output " +
+          csv.string());
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"model", "pressure", "parameters", "inertia_ratio", "N", "eps0",
+                          "eps_final", "eps_fixed_point", "t_stop_slide", "t_stop_spin", "steps",
+                          "rejected_steps", "distance", "rotation", "stopped", "trajectory_rows"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_NEAR(j["eps_final"].get<double>(), 0.6530018, 1e-6);
+  EXPECT_NEAR(j["eps_fixed_point"].get<double>(), 0.65300178920560, 1e-12);
+  const double ts = j["t_stop_slide"].get<double>();
+  EXPECT_NEAR(j["t_stop_spin"].get<double>(), ts, 1e-9 * ts);
+  EXPECT_NEAR(j["N"].get<double>(), 2 * 9.81, 1e-12);
+  EXPECT_TRUE(j["stopped"].get<bool>());
+
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header.rfind("t,v_x,v_y,omega,eps,T_x,T_y,M_z", 0), 0u) << header;
+  std::size_t rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  EXPECT_EQ(rows, j["trajectory_rows"].get<std::size_t>());
+  EXPECT_GT(rows, 10u);
+  fs::remove_all(d);
+}
+
+TEST(CliSimulate, SeedModelAndSlipAngleRun) {
+  const RunResult r =
+      run("simulate --model seed --pressure hertz --param f=0.5,kappa=1.5 --inertia-ratio 0.5 "
+          "--v0 1 --omega0 -3 --slip-angle 30");
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["slip_angle_final_deg"].get<double>(), 0.0, 1e-3);
+  EXPECT_GT(j["steps"].get<long>(), 0);
+}
+
+TEST(CliSimulate, InvalidOptionsExitWithCodeTwoAndOneLine) {
+  for (const char* args :
+       {"simulate", "simulate --inertia-ratio 0", "simulate --inertia-ratio -1",
+        "simulate --inertia-ratio abc", "simulate --inertia-ratio nan",
+        "simulate --inertia-ratio 0.5 --v0 0 --omega0 0", "simulate --inertia-ratio 0.5 --mass 0",
+        "simulate --inertia-ratio 0.5 --v0 -1", "simulate --inertia-ratio 0.5 --tol 0",
+        "simulate --inertia-ratio 0.5 --model foo", "simulate --inertia-ratio 0.5 --N -3"}) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << args << ": " << r.out;
+  }
+}
+
+}  // namespace
