@@ -294,17 +294,23 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
     const int ci = static_cast<int>(c);
     ChannelSummary cs;
     cs.channel = c;
-    double sum2 = 0.0;
+    double peak = 0.0, sum2 = 0.0;  // sum2 relative to peak: no overflow near the double range
     for (std::size_t i = 0; i < data.rows(); ++i)
       if (data.present[ci][i]) {
         ++cs.rows;
-        sum2 += data.value[ci][i] * data.value[ci][i];
+        peak = std::max(peak, std::fabs(data.value[ci][i]));
+      }
+    for (std::size_t i = 0; i < data.rows(); ++i)
+      if (data.present[ci][i] && peak > 0.0) {
+        const double u = data.value[ci][i] / peak;
+        sum2 += u * u;
       }
     if (data.has_sigma(c)) {
       cs.scale = 1.0;
       cs.scale_source = "sigma column";
     } else {
-      const double rms = std::sqrt(sum2 / std::max<std::size_t>(cs.rows, 1));
+      const double rms =
+          peak * std::sqrt(sum2 / static_cast<double>(std::max<std::size_t>(cs.rows, 1)));
       cs.scale = rms > 0.0 ? rms : 1.0;
       cs.scale_source = rms > 0.0 ? "RMS of the measured values (no sigma column)"
                                   : "1 (all measured values are zero; no sigma column)";
@@ -535,30 +541,39 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
   const ModelEvaluator<double> model(s.model, s.law, x.data());
   res.eps.resize(data.rows());
   for (auto& f : res.fitted) f.assign(data.rows(), 0.0);
-  std::array<double, kChannelCount> ss_res{}, sum{}, sum2{};
-  std::array<std::size_t, kChannelCount> cnt{};
   for (std::size_t i = 0; i < data.rows(); ++i) {
     const model::Kinematics kin{data.v_x[i], data.v_y[i], data.omega[i], data.N[i], data.R[i]};
     res.eps[i] = model::slip_geometry(kin).eps;
     const auto pr = model(kin);
     const double pred[kChannelCount] = {pr.T_x, pr.T_y, pr.M_z, pr.M_roll};
-    for (int c = 0; c < kChannelCount; ++c) {
-      res.fitted[c][i] = pred[c];
-      if (!data.present[c][i]) continue;
-      const double d = pred[c] - data.value[c][i];
-      ss_res[c] += d * d;
-      sum[c] += data.value[c][i];
-      sum2[c] += data.value[c][i] * data.value[c][i];
-      ++cnt[c];
-    }
+    for (int c = 0; c < kChannelCount; ++c) res.fitted[c][i] = pred[c];
   }
+  // Two passes, sums taken relative to the channel's largest magnitude: loads near the top of
+  // the double range must not overflow the sums of squares, nor a large mean cancel R^2.
   for (auto& cs : res.channel_summaries) {
     const int c = static_cast<int>(cs.channel);
-    if (cnt[c] == 0) continue;
-    cs.rmse = std::sqrt(ss_res[c] / static_cast<double>(cnt[c]));
-    const double mean = sum[c] / static_cast<double>(cnt[c]);
-    const double ss_tot = sum2[c] - static_cast<double>(cnt[c]) * mean * mean;
-    if (ss_tot > 0.0) cs.r2 = 1.0 - ss_res[c] / ss_tot;
+    std::size_t cnt = 0;
+    double scale = 0.0, mean = 0.0;
+    for (std::size_t i = 0; i < data.rows(); ++i) {
+      if (!data.present[c][i]) continue;
+      scale = std::max({scale, std::fabs(data.value[c][i]), std::fabs(res.fitted[c][i])});
+      ++cnt;
+    }
+    if (cnt == 0) continue;
+    if (scale == 0.0) scale = 1.0;
+    for (std::size_t i = 0; i < data.rows(); ++i)
+      if (data.present[c][i]) mean += data.value[c][i] / scale;
+    mean /= static_cast<double>(cnt);
+    double ss_res = 0.0, ss_tot = 0.0;
+    for (std::size_t i = 0; i < data.rows(); ++i) {
+      if (!data.present[c][i]) continue;
+      const double d = res.fitted[c][i] / scale - data.value[c][i] / scale;
+      const double t = data.value[c][i] / scale - mean;
+      ss_res += d * d;
+      ss_tot += t * t;
+    }
+    cs.rmse = scale * std::sqrt(ss_res / static_cast<double>(cnt));
+    if (ss_tot > 0.0) cs.r2 = 1.0 - ss_res / ss_tot;
   }
 
   // Warnings, in words.
