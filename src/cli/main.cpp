@@ -155,6 +155,19 @@ int main(int argc, char** argv) {
   SimulateOptions simulate;
   add_simulate(app, simulate);
 
+  // An empty value ("--param ''", "--fix=") would otherwise read as "option not given".
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool empty_inline = arg.rfind("--", 0) == 0 && !arg.empty() && arg.back() == '=';
+    if (arg.empty() || empty_inline) {
+      const std::string after = i > 1 ? std::string(" after ") + argv[i - 1] : std::string();
+      std::fprintf(stderr,
+                   "frictionid: error: empty argument %d%s; expected a value (see --help)\n", i,
+                   (empty_inline ? " (" + arg + ")" : after).c_str());
+      return kExitBadInput;
+    }
+  }
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -126,6 +126,22 @@ TEST(Cli, FitOnAMissingFileOrUnknownParameterFailsWithoutAReport) {
   fs::remove_all(d);
 }
 
+// "--fix ''" must not silently mean "nothing fixed".
+TEST(Cli, EmptyOptionValuesAreRejectedNotIgnored) {
+  const fs::path d = temp_dir("empty");
+  const std::string csv = (d / "x.csv").string(), rep = (d / "rep").string();
+  ASSERT_EQ(run("generate --model seed --rows 20 --output " + csv).code, 0);
+  for (const std::string opt :
+       {"--fix ''", "--bounds ''", "--param ''", "--columns ''", "--channels=", "--pressure ''"}) {
+    const RunResult r = run("fit " + csv + " --model seed " + opt + " --report " + rep);
+    EXPECT_EQ(r.code, 2) << opt << ": " << r.out;
+    EXPECT_NE(r.out.find("empty argument"), std::string::npos) << opt << ": " << r.out;
+    EXPECT_FALSE(fs::exists(rep)) << opt;
+  }
+  EXPECT_EQ(run("eval --model seed --vx 1 --omega 1 --param ''").code, 2);
+  fs::remove_all(d);
+}
+
 }  // namespace
 
 namespace {
