@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "identify/global_search.hpp"
+#include "identify/residual_diagnostics.hpp"
 #include "identify/residuals.hpp"
 #include "identify/statistics.hpp"
 #include "model/coefficients.hpp"
@@ -581,6 +582,29 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
     res.warnings.push_back("the local solver did not converge (" + res.solver.termination +
                            " after " + std::to_string(res.solver.iterations) +
                            " iterations): the estimates may not be at the optimum");
+  std::string growing, growth_values;
+  for (const auto& cs : res.channel_summaries) {
+    const int c = static_cast<int>(cs.channel);
+    // Exact fits (noise-free data) leave rounding residuals, which do grow with the values.
+    if (data.has_sigma(cs.channel) || cs.rows < 20 || !(cs.rmse > 1e-9 * cs.scale)) continue;
+    std::vector<double> fitted, measured;
+    for (std::size_t i = 0; i < data.rows(); ++i)
+      if (data.present[c][i]) {
+        fitted.push_back(res.fitted[c][i]);
+        measured.push_back(data.value[c][i]);
+      }
+    const double growth = residual_growth(fitted, measured);
+    if (growth <= kResidualGrowthWarning) continue;
+    growing += (growing.empty() ? "" : ", ") + std::string(channel_name(cs.channel));
+    growth_values += (growth_values.empty() ? "" : ", ") + fmt_g(growth);
+  }
+  if (!growing.empty())
+    res.warnings.push_back(
+        "the residuals of " + growing + " grow with the measured magnitude (rank correlation " +
+        growth_values +
+        "): noise proportional to the signal, or a shape the model misses. Without sigma_<channel> "
+        "columns every row of a channel is weighted alike and the standard errors assume equal "
+        "noise on every row, so they are likely too small; give per-row sigma columns");
   if (!undetermined.empty()) {
     std::string w = "not determined by the data: " + join_names(undetermined) +
                     " (the Jacobian is rank deficient along a combination of them); no standard "
