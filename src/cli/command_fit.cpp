@@ -1,4 +1,5 @@
 // frictionid fit: identify a model's parameters from a dataset and write a report.
+#include <chrono>
 #include <cstdio>
 
 #include "cli/commands.hpp"
@@ -12,8 +13,11 @@
 namespace frictionid::cli {
 
 int run_fit(const FitOptions& o) {
+  using seconds = std::chrono::duration<double>;
   const FitSettings s = fit_settings_from_options(o, o.model);
+  const auto t_read = std::chrono::steady_clock::now();
   const Dataset data = load_dataset_csv(o.data, parse_column_map(o.columns));
+  const double read_s = seconds(std::chrono::steady_clock::now() - t_read).count();
 
   const std::atomic<bool>* interrupted = install_interrupt_handler();
   FitResult r;
@@ -29,7 +33,9 @@ int run_fit(const FitOptions& o) {
     std::fprintf(stderr, "frictionid: interrupted; no report written\n");
     return kExitInterrupted;
   }
+  const auto t_write = std::chrono::steady_clock::now();
   const auto files = write_report(o.report, r, data);
+  const double write_s = seconds(std::chrono::steady_clock::now() - t_write).count();
 
   std::printf("model %s, pressure %s, %zu rows, channels", r.model.c_str(), r.pressure.c_str(),
               r.rows);
@@ -47,8 +53,10 @@ int run_fit(const FitOptions& o) {
   std::printf("cost %.6g, reduced chi2 %.6g, %d of %d starts reached the best, %s in %.2f s\n",
               r.cost, r.reduced_chi2, r.global.reached_best, r.global.starts,
               r.solver.termination.c_str(), r.solver.time_s);
-  std::printf("time: global stage %.3f s, local fits %.3f s, statistics and predictions %.3f s\n",
-              r.solver.global_time_s, r.solver.local_time_s, r.solver.statistics_time_s);
+  std::printf(
+      "time: reading %.3f s, global stage %.3f s, local fits %.3f s, statistics and predictions "
+      "%.3f s, report %.3f s\n",
+      read_s, r.solver.global_time_s, r.solver.local_time_s, r.solver.statistics_time_s, write_s);
   for (const auto& w : r.warnings) std::printf("warning: %s\n", w.c_str());
   std::printf("report: %s/report.md (%zu files)\n", o.report.c_str(), files.size());
   return kExitOk;

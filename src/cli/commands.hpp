@@ -55,7 +55,7 @@ struct FitOptions {
   std::size_t global_subsample = 400;
   bool no_global = false;
   std::string global_algorithm = "crs2";
-  int threads = 1;
+  int threads = 0;  // 0: every hardware thread; results do not depend on it
   std::string report;
   bool progress = false;
 };

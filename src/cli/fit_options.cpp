@@ -112,7 +112,8 @@ FitSettings fit_settings_from_options(const FitOptions& o, const std::string& mo
   s.global_algorithm = o.global_algorithm;
   s.global_evaluations = o.global_evaluations;
   s.global_subsample = o.global_subsample;
-  s.threads = std::max(1, o.threads);
+  if (o.threads < 0) throw InputError("--threads must be 0 (every hardware thread) or more");
+  s.threads = o.threads;
   s.progress = o.progress || ::isatty(STDERR_FILENO);
 
   return s;

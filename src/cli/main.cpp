@@ -91,7 +91,10 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
   c->add_flag("--no-global", o.no_global, "skip the global stage; start from --param values");
   c->add_option("--channels", o.channels, "channels to fit, e.g. T_x,M_z (default: all measured)");
   c->add_option("--columns", o.columns, "rename columns: canonical=header,...");
-  c->add_option("--threads", o.threads, "solver threads")->capture_default_str();
+  c->add_option("--threads", o.threads,
+                "threads for the passes over the rows (0: every hardware thread); the results "
+                "do not depend on it")
+      ->capture_default_str();
   c->add_option("--report", o.report, "directory for report.json, report.md and plots")->required();
   c->add_flag("--progress", o.progress, "progress line on stderr (default: when it is a terminal)");
 }

@@ -38,6 +38,8 @@ struct GlobalSearchSummary {
   int reached_best = 0;  // how many of them ended at the best cost (rel. 1e-8)
   long evaluations = 0;  // objective evaluations in the global stage
   std::size_t subsample_rows = 0;
+  bool local_fits_on_subsample = false;  // the starts' local fits ran on the subsample, the
+                                         // best of them was then refined on all rows
   unsigned long long seed = 0;
 };
 

@@ -42,7 +42,7 @@ struct FitSettings {
   double function_tolerance = 1e-15;
   double gradient_tolerance = 1e-15;
   double parameter_tolerance = 1e-13;
-  int threads = 1;
+  int threads = 0;        // threads for the passes over the rows; 0: every hardware thread
   bool progress = false;  // one updating line on stderr during the search
 };
 

@@ -1,7 +1,5 @@
-// Ceres and NLopt adapters. The only translation unit that includes Ceres.
+// The runner: global stage, local stage from the best distinct starts, statistics, warnings.
 #include "identify/fitter.hpp"
-
-#include <ceres/ceres.h>
 
 #include <algorithm>
 #include <chrono>
@@ -12,225 +10,29 @@
 #include <memory>
 #include <set>
 #include <sstream>
-#include <thread>
 
 #include "identify/global_search.hpp"
+#include "identify/local_stage.hpp"
 #include "identify/residual_diagnostics.hpp"
 #include "identify/residuals.hpp"
+#include "identify/row_chunks.hpp"
 #include "identify/statistics.hpp"
 #include "model/coefficients.hpp"
 
 namespace frictionid {
 namespace {
 
-using Params = std::array<double, kParamCount>;
-constexpr std::size_t kBlockRows = 1024;
-
-// One residual block. Its parameter block holds only the free parameters (Jets as narrow as
-// the fit needs); the fixed and unused ones come from `base`.
-struct BlockCost {
-  ResidualRows rows;
-  ModelKind kind;
-  const model::PressureLaw<double>* law;
-  LossKind loss;
-  double loss_scale;
-  const std::vector<int>* free;
-  Params base;
-  int threads = 1;
-
-  // Rows are split into contiguous slices, one per thread, each writing its own residuals:
-  // the arithmetic is the same whatever the thread count, so results are bit-identical.
-  // (Ceres' own threads sum partial costs in scheduling order, so they stay at one.)
-  template <typename T>
-  bool operator()(const T* z, T* r) const {
-    std::array<T, kParamCount> full;
-    for (int i = 0; i < kParamCount; ++i) full[i] = T(base[i]);
-    for (std::size_t j = 0; j < free->size(); ++j) full[(*free)[j]] = z[j];
-    const std::size_t n = rows.end - rows.begin;
-    const std::size_t parts =
-        std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), n / 128 + 1);
-    if (parts <= 1) return evaluate_residuals(rows, kind, *law, loss, loss_scale, full.data(), r);
-    std::vector<std::thread> pool;
-    std::vector<char> ok(parts, 0);
-    const std::size_t nc = rows.channels.size();
-    for (std::size_t t = 0; t < parts; ++t) {
-      ResidualRows slice = rows;
-      slice.begin = rows.begin + n * t / parts;
-      slice.end = rows.begin + n * (t + 1) / parts;
-      T* out = r + (slice.begin - rows.begin) * nc;
-      auto work = [this, slice, out, &full, &ok, t] {
-        ok[t] = evaluate_residuals(slice, kind, *law, loss, loss_scale, full.data(), out);
-      };
-      if (t + 1 == parts)
-        work();
-      else
-        pool.emplace_back(work);
-    }
-    for (auto& th : pool) th.join();
-    return std::all_of(ok.begin(), ok.end(), [](char v) { return v != 0; });
-  }
-};
-
-// Forward-mode autodiff over one block with Ceres' Jets: seeds the N free parameters, evaluates
-// the templated residuals once, scatters values and derivatives. Ceres' generic
-// AutoDiffCostFunction does the same but allocates and NaN-fills per call, which cost ~3x the
-// model evaluation itself on tall blocks.
-template <int N>
-class BlockJetCost final : public ceres::CostFunction {
- public:
-  explicit BlockJetCost(const BlockCost& c) : cost_(c) {
-    set_num_residuals(static_cast<int>(c.rows.residual_count()));
-    mutable_parameter_block_sizes()->push_back(N);
-  }
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    if (jacobians == nullptr || jacobians[0] == nullptr) return cost_(parameters[0], residuals);
-    using Jet = ceres::Jet<double, N>;
-    std::array<Jet, N> z;
-    for (int j = 0; j < N; ++j) z[j] = Jet(parameters[0][j], j);
-    thread_local std::vector<Jet> out;
-    const std::size_t n = cost_.rows.residual_count();
-    out.resize(n);
-    if (!cost_(z.data(), out.data())) return false;
-    double* jac = jacobians[0];
-    for (std::size_t i = 0; i < n; ++i) {
-      residuals[i] = out[i].a;
-      for (int j = 0; j < N; ++j) jac[i * N + static_cast<std::size_t>(j)] = out[i].v[j];
-    }
-    return true;
-  }
-
- private:
-  BlockCost cost_;
-};
-
-template <int N>
-ceres::CostFunction* make_cost_n(const BlockCost& c) {
-  return new BlockJetCost<N>(c);
-}
-
-// Jet width is a compile-time constant: dispatch on the number of free parameters.
-std::unique_ptr<ceres::CostFunction> make_cost_function(const BlockCost& c) {
-  using Maker = ceres::CostFunction* (*)(const BlockCost&);
-  static constexpr Maker makers[kParamCount] = {make_cost_n<1>, make_cost_n<2>, make_cost_n<3>,
-                                                make_cost_n<4>, make_cost_n<5>, make_cost_n<6>,
-                                                make_cost_n<7>, make_cost_n<8>, make_cost_n<9>};
-  const std::size_t k = c.free->size();
-  if (k < 1 || k > kParamCount) throw std::logic_error("free parameter count out of range");
-  return std::unique_ptr<ceres::CostFunction>(makers[k - 1](c));
-}
+using Params = ParamVector;
+constexpr std::size_t kGrowthSampleRows = 50000;
 
 struct Problem {
   const Dataset* data;
   const FitSettings* s;
   std::vector<Channel> channels;
   std::array<double, kChannelCount> scale{};
-  std::vector<ResidualRows> blocks;
   std::vector<int> used;  // parameters the model reads
   std::vector<int> free;  // used and not fixed
 };
-
-std::vector<ResidualRows> make_blocks(const Problem& p, const std::vector<std::size_t>& rows_begin,
-                                      std::size_t rows_end) {
-  std::vector<ResidualRows> out;
-  for (std::size_t b : rows_begin) {
-    ResidualRows r;
-    r.data = p.data;
-    r.channels = p.channels;
-    r.scale = p.scale;
-    r.begin = b;
-    r.end = std::min(b + kBlockRows, rows_end);
-    out.push_back(r);
-  }
-  return out;
-}
-
-// Sum of squared (robustified) residuals over the given blocks: twice Ceres' cost.
-double sum_of_squares(const Problem& p, const std::vector<ResidualRows>& blocks, const Params& x) {
-  double total = 0.0;
-  std::vector<double> r;
-  for (const auto& b : blocks) {
-    r.resize(b.residual_count());
-    if (!evaluate_residuals(b, p.s->model, p.s->law, p.s->loss, p.s->loss_scale, x.data(),
-                            r.data()))
-      return std::numeric_limits<double>::infinity();
-    for (double v : r) total += v * v;
-  }
-  return total;
-}
-
-class Callback : public ceres::IterationCallback {
- public:
-  Callback(const std::atomic<bool>* cancel, bool progress, int start, int starts)
-      : cancel_(cancel), progress_(progress), start_(start), starts_(starts) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary& it) override {
-    if (progress_)
-      std::fprintf(stderr, "\rfrictionid: local fit %d/%d, iteration %d, cost %.6e   ", start_,
-                   starts_, it.iteration, it.cost);
-    if (cancel_ && cancel_->load()) return ceres::SOLVER_ABORT;
-    return ceres::SOLVER_CONTINUE;
-  }
-
- private:
-  const std::atomic<bool>* cancel_;
-  bool progress_;
-  int start_, starts_;
-};
-
-struct LocalOutcome {
-  Params x{};
-  double cost = std::numeric_limits<double>::infinity();
-  ceres::Solver::Summary summary;
-};
-
-LocalOutcome local_fit(const Problem& p, const Params& start, const std::atomic<bool>* cancel,
-                       int start_index, int starts) {
-  LocalOutcome out;
-  out.x = start;
-  ceres::Problem::Options po;
-  ceres::Problem problem(po);
-  if (p.free.empty()) {
-    out.cost = 0.5 * sum_of_squares(p, p.blocks, out.x);
-    out.summary.termination_type = ceres::CONVERGENCE;
-    return out;
-  }
-  std::vector<double> z;
-  for (int i : p.free) z.push_back(out.x[i]);
-  for (const auto& b : p.blocks)
-    problem.AddResidualBlock(
-        make_cost_function(BlockCost{b, p.s->model, &p.s->law, p.s->loss, p.s->loss_scale, &p.free,
-                                     out.x, p.s->threads})
-            .release(),
-        nullptr, z.data());
-  for (std::size_t j = 0; j < p.free.size(); ++j) {
-    problem.SetParameterLowerBound(z.data(), static_cast<int>(j), p.s->params[p.free[j]].lower);
-    problem.SetParameterUpperBound(z.data(), static_cast<int>(j), p.s->params[p.free[j]].upper);
-  }
-  ceres::Solver::Options o;
-  // A tall, thin Jacobian (rows x <= 9): normal equations cost O(m k^2) and are well enough
-  // conditioned for Levenberg-Marquardt's damped system.
-  o.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-  // Ceres' projected line search under bounds costs one more Jacobian per iteration; bounds
-  // stay enforced by projecting the trust-region step, so skip it.
-  o.max_num_line_search_step_size_iterations = 0;
-  o.max_num_iterations = p.s->max_iterations;
-  o.function_tolerance = p.s->function_tolerance;
-  o.gradient_tolerance = p.s->gradient_tolerance;
-  o.parameter_tolerance = p.s->parameter_tolerance;
-  o.num_threads = 1;  // see BlockCost: our own row slices keep results thread-count invariant
-  o.logging_type = ceres::SILENT;
-  o.minimizer_progress_to_stdout = false;
-  Callback cb(cancel, p.s->progress, start_index, starts);
-  o.callbacks.push_back(&cb);
-  ceres::Solve(o, &problem, &out.summary);
-  for (std::size_t j = 0; j < p.free.size(); ++j) out.x[p.free[j]] = z[j];
-  // Diagnostics for performance work: Ceres' own time breakdown of every local fit.
-  if (std::getenv("FRICTIONID_CERES_REPORT"))
-    std::fprintf(stderr, "%s\n", out.summary.FullReport().c_str());
-  out.cost = out.summary.final_cost;
-  if (!std::isfinite(out.cost)) out.cost = std::numeric_limits<double>::infinity();
-  return out;
-}
 
 // Map between parameters and the global stage's coordinates (log for wide positive ranges).
 double to_search(const ParameterSetting& s, double v) {
@@ -325,9 +127,15 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
   p.used = model_parameters(s.model, s.law.kind);
   for (int i : p.used)
     if (!s.params[i].fixed) p.free.push_back(i);
-  std::vector<std::size_t> begins;
-  for (std::size_t b = 0; b < data.rows(); b += kBlockRows) begins.push_back(b);
-  p.blocks = make_blocks(p, begins, data.rows());
+  LocalProblem lp;
+  lp.rows.data = &data;
+  lp.rows.channels = p.channels;
+  lp.rows.scale = p.scale;
+  lp.rows.begin = 0;
+  lp.rows.end = data.rows();
+  lp.settings = &s;
+  lp.free = p.free;
+  lp.threads = resolve_thread_count(s.threads);
 
   Params initial{};
   for (int i = 0; i < kParamCount; ++i)
@@ -338,12 +146,12 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
   // Global stage on a deterministic subsample (every k-th row).
   std::vector<Params> starts;
   res.global.seed = s.seed;
+  Dataset sub;
+  LocalProblem ps = lp;  // the subsample's problem
+  bool subsampled = false;
   if (s.global && !p.free.empty()) {
-    Dataset sub;
     const std::size_t stride =
         std::max<std::size_t>(1, (data.rows() + s.global_subsample - 1) / s.global_subsample);
-    Problem ps = p;
-    std::vector<std::size_t> sub_begins;
     // Subsample rows are a strided view: copy them into a compact dataset.
     sub.source = data.source;
     for (std::size_t i = 0; i < data.rows(); i += stride) {
@@ -359,9 +167,10 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
         if (!data.sigma[c].empty()) sub.sigma[c].push_back(data.sigma[c][i]);
       }
     }
-    ps.data = &sub;
-    for (std::size_t b = 0; b < sub.rows(); b += kBlockRows) sub_begins.push_back(b);
-    ps.blocks = make_blocks(ps, sub_begins, sub.rows());
+    ps.rows.data = &sub;
+    ps.rows.end = sub.rows();
+    ps.threads = 1;  // a few hundred rows: threads would cost more than they save
+    subsampled = stride > 1;
     res.global.subsample_rows = sub.rows();
 
     GlobalSearchProblem gp;
@@ -379,7 +188,7 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
       if (s.progress && evaluations % 250 == 0)
         std::fprintf(stderr, "\rfrictionid: global search %ld/%ld evaluations   ", evaluations,
                      s.global_evaluations);
-      return sum_of_squares(ps, ps.blocks, x);
+      return 2.0 * problem_cost(ps, x);  // sum of squares
     };
     const GlobalSearchOutcome g = global_search(gp, s.global_algorithm, s.global_evaluations,
                                                 s.seed, std::max(1, s.starts), cancel);
@@ -399,87 +208,79 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
   if (starts.empty()) starts.push_back(initial);
   if (cancel && cancel->load()) throw FitError("interrupted");
 
-  // Local stage from every start; the best final cost wins (ties: the earlier start).
+  // Local fits from every start; the best final cost wins (ties: the earlier start). A fit
+  // that Ceres ends in FAILURE (an evaluation or the linear solver failed) does not count.
+  // On a subsampled dataset they run on the subsample, and only the best is refined on all
+  // rows: the starts decide between basins, which the subsample resolves at a fraction of the
+  // cost, and the final fit from a nearby point needs only a few passes over all rows.
+  const LocalProblem& start_problem = subsampled ? ps : lp;
   std::vector<LocalOutcome> locals;
   for (std::size_t k = 0; k < starts.size(); ++k) {
-    locals.push_back(
-        local_fit(p, starts[k], cancel, static_cast<int>(k + 1), static_cast<int>(starts.size())));
+    locals.push_back(local_fit(start_problem, starts[k], cancel, static_cast<int>(k + 1),
+                               static_cast<int>(starts.size())));
+    if (locals.back().termination == "FAILURE")
+      locals.back().cost = std::numeric_limits<double>::infinity();
     if (cancel && cancel->load()) throw FitError("interrupted");
   }
-  if (s.progress) std::fprintf(stderr, "\r%80s\r", "");
   std::size_t best = 0;
   for (std::size_t k = 1; k < locals.size(); ++k)
     if (locals[k].cost < locals[best].cost) best = k;
-  const LocalOutcome& L = locals[best];
-  if (!std::isfinite(L.cost))
-    throw FitError("every local fit failed: the model produced non-finite values at every start");
+  if (!std::isfinite(locals[best].cost))
+    throw FitError(
+        "every local fit failed: the model or its derivatives were not finite, or the solver "
+        "failed, at every start");
   res.global.starts = static_cast<int>(locals.size());
+  // Same cost to 1e-8, or both at rounding level (residuals ~1e-12 of their sigma: exact data).
+  const double rounding_cost = 1e-24 * static_cast<double>(start_problem.rows.residual_count());
   for (const auto& l : locals)
-    if (std::fabs(l.cost - L.cost) <= 1e-8 * std::max(L.cost, 1e-300) + 1e-300)
+    if (std::fabs(l.cost - locals[best].cost) <= 1e-8 * locals[best].cost + rounding_cost)
       ++res.global.reached_best;
-  res.solver.iterations = static_cast<int>(L.summary.iterations.size()) - 1;
-  res.solver.termination = ceres::TerminationTypeToString(L.summary.termination_type);
-  res.solver.converged = L.summary.termination_type == ceres::CONVERGENCE ||
-                         L.summary.termination_type == ceres::USER_SUCCESS;
+  res.global.local_fits_on_subsample = subsampled;
+  LocalOutcome L = locals[best];
+  if (subsampled) {
+    L = local_fit(lp, locals[best].x, cancel, static_cast<int>(starts.size()) + 1,
+                  static_cast<int>(starts.size()) + 1);
+    if (cancel && cancel->load()) throw FitError("interrupted");
+    if (L.termination == "FAILURE" || !std::isfinite(L.cost))
+      throw FitError("the local fit on all rows failed (" + L.termination +
+                     "): the model or its derivatives were not finite, or the solver failed");
+  }
+  if (s.progress) std::fprintf(stderr, "\r%80s\r", "");
+  res.solver.iterations = L.iterations;
+  res.solver.termination = L.termination;
+  res.solver.converged = L.converged;
+  // Diagnostics for performance work: Ceres' own time breakdown of the final local fit.
+  if (std::getenv("FRICTIONID_CERES_REPORT")) std::fprintf(stderr, "%s\n", L.full_report.c_str());
   const Params& x = L.x;
   const auto t_local = std::chrono::steady_clock::now();
 
-  // Jacobian and residuals at the optimum (whitened, robustified), free columns only.
-  std::size_t nres = 0;
-  for (const auto& b : p.blocks) nres += b.residual_count();
-  Eigen::MatrixXd J(static_cast<Eigen::Index>(nres), static_cast<Eigen::Index>(p.free.size()));
-  Eigen::VectorXd r(static_cast<Eigen::Index>(nres));
-  {
-    std::size_t off = 0;
-    std::vector<double> jac, rr;
-    for (const auto& b : p.blocks) {
-      const std::size_t n = b.residual_count();
-      const std::size_t k = p.free.size();
-      jac.assign(n * std::max<std::size_t>(k, 1), 0.0);
-      rr.assign(n, 0.0);
-      std::vector<double> z;
-      for (int i : p.free) z.push_back(x[i]);
-      const BlockCost cost{b, s.model, &s.law, s.loss, s.loss_scale, &p.free, x, s.threads};
-      if (k == 0) {
-        if (!evaluate_residuals(b, s.model, s.law, s.loss, s.loss_scale, x.data(), rr.data()))
-          throw FitError("the model is not finite at the fitted parameters");
-      } else {
-        const auto cf = make_cost_function(cost);
-        const double* params[] = {z.data()};
-        double* jacs[] = {jac.data()};
-        if (!cf->Evaluate(params, rr.data(), jacs))
-          throw FitError("the model is not finite at the fitted parameters");
-      }
-      for (std::size_t i = 0; i < n; ++i) {
-        r[static_cast<Eigen::Index>(off + i)] = rr[i];
-        for (std::size_t j = 0; j < p.free.size(); ++j)
-          J(static_cast<Eigen::Index>(off + i), static_cast<Eigen::Index>(j)) =
-              jac[i * p.free.size() + j];
-      }
-      off += n;
-    }
+  // The whitened Jacobian at the optimum (free columns), as its triangular factor.
+  const std::size_t k = p.free.size();
+  Eigen::MatrixXd jacobian_r(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k));
+  if (k == 0) {
+    res.cost = problem_cost(lp, x);
+    if (!std::isfinite(res.cost))
+      throw FitError("the model is not finite at the fitted parameters");
+  } else {
+    const auto jf = jacobian_factor(lp, x);
+    if (!jf) throw FitError("the model is not finite at the fitted parameters");
+    jacobian_r = jf->r;
+    res.cost = jf->cost;
   }
 
   // Observations: measured values of fitted channels (unmeasured cells hold residual 0).
   std::size_t nobs = 0;
   for (const auto& cs : res.channel_summaries) nobs += cs.rows;
-  const std::size_t k = p.free.size();
   res.residuals = nobs;
   res.dof = nobs > k ? nobs - k : 0;
   // chi2 without the loss, cost with it.
   {
-    ResidualRows all;
-    all.data = &data;
-    all.channels = p.channels;
-    all.scale = p.scale;
-    all.begin = 0;
-    all.end = data.rows();
-    std::vector<double> plain(all.residual_count());
-    evaluate_residuals(all, s.model, s.law, LossKind::None, 1.0, x.data(), plain.data());
-    res.chi2 = 0.0;
-    for (double v : plain) res.chi2 += v * v;
+    FitSettings plain_settings = s;
+    plain_settings.loss = LossKind::None;
+    LocalProblem plain = lp;
+    plain.settings = &plain_settings;
+    res.chi2 = 2.0 * problem_cost(plain, x);
   }
-  res.cost = 0.5 * r.squaredNorm();
   res.reduced_chi2 = res.dof > 0 ? res.chi2 / static_cast<double>(res.dof) : 0.0;
   const double n = static_cast<double>(std::max<std::size_t>(nobs, 1));
   const double kk = static_cast<double>(k);
@@ -493,7 +294,7 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
   }
   res.covariance_scaled_by_reduced_chi2 = !absolute_sigma;
 
-  const JacobianCovariance cov = covariance_from_jacobian(J);
+  const JacobianCovariance cov = covariance_from_jacobian(jacobian_r);
   const double cov_scale = absolute_sigma ? 1.0 : res.reduced_chi2;
   const double tq = res.dof > 0 ? student_t_quantile(0.975, static_cast<double>(res.dof)) : 0.0;
   std::vector<int> undetermined;
@@ -542,13 +343,16 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
   const ModelEvaluator<double> model(s.model, s.law, x.data());
   res.eps.resize(data.rows());
   for (auto& f : res.fitted) f.assign(data.rows(), 0.0);
-  for (std::size_t i = 0; i < data.rows(); ++i) {
-    const model::Kinematics kin{data.v_x[i], data.v_y[i], data.omega[i], data.N[i], data.R[i]};
-    res.eps[i] = model::slip_geometry(kin).eps;
-    const auto pr = model(kin);
-    const double pred[kChannelCount] = {pr.T_x, pr.T_y, pr.M_z, pr.M_roll};
-    for (int c = 0; c < kChannelCount; ++c) res.fitted[c][i] = pred[c];
-  }
+  for_each_chunk(chunk_count(data.rows()), lp.threads, [&](std::size_t chunk) {
+    const std::size_t end = std::min(data.rows(), (chunk + 1) * kChunkRows);
+    for (std::size_t i = chunk * kChunkRows; i < end; ++i) {
+      const model::Kinematics kin{data.v_x[i], data.v_y[i], data.omega[i], data.N[i], data.R[i]};
+      res.eps[i] = model::slip_geometry(kin).eps;
+      const auto pr = model(kin);
+      const double pred[kChannelCount] = {pr.T_x, pr.T_y, pr.M_z, pr.M_roll};
+      for (int c = 0; c < kChannelCount; ++c) res.fitted[c][i] = pred[c];
+    }
+  });
   // Two passes, sums taken relative to the channel's largest magnitude: loads near the top of
   // the double range must not overflow the sums of squares, nor a large mean cancel R^2.
   for (auto& cs : res.channel_summaries) {
@@ -588,8 +392,12 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
     // Exact fits (noise-free data) leave rounding residuals, which do grow with the values.
     if (data.has_sigma(cs.channel) || cs.rows < 20 || !(cs.rmse > 1e-9 * cs.scale)) continue;
     std::vector<double> fitted, measured;
+    // A rank correlation sorts: on large data every k-th measured row (at most ~50,000) tells
+    // as much about the trend.
+    const std::size_t stride = cs.rows / kGrowthSampleRows + 1;
+    std::size_t seen = 0;
     for (std::size_t i = 0; i < data.rows(); ++i)
-      if (data.present[c][i]) {
+      if (data.present[c][i] && seen++ % stride == 0) {
         fitted.push_back(res.fitted[c][i]);
         measured.push_back(data.value[c][i]);
       }

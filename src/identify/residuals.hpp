@@ -29,28 +29,32 @@ struct ResidualRows {
   }
 };
 
+// sqrt(rho(s)/s), written through rho(s)/s so that nothing cancels as s -> 0 (a near-exact
+// fit): log(1 + x)/x by its series for small x, and 2c^2 (sqrt(1 + x) - 1)/s = 2/(sqrt(1 + x) + 1).
 template <typename T>
 T robust_row_factor(const T& s, LossKind loss, double scale) {
-  using std::log;
+  using std::log1p;
   using std::sqrt;
   if (loss == LossKind::None || !(s > 1e-300)) return T(1);
   const double c2 = scale * scale;
-  T rho;
+  const T x = s / c2;
+  T ratio;  // rho(s)/s
   switch (loss) {
     case LossKind::Huber:
       if (s <= c2) return T(1);
-      rho = T(2 * scale) * sqrt(s) - T(c2);
+      ratio = (T(2 * scale) * sqrt(s) - T(c2)) / s;
       break;
     case LossKind::Cauchy:
-      rho = T(c2) * log(T(1) + s / c2);
+      ratio = x < 1e-3 ? T(1) + x * (T(-0.5) + x * (T(1.0 / 3) + x * (T(-0.25) + x * 0.2)))
+                       : log1p(x) / x;
       break;
     case LossKind::SoftL1:
-      rho = T(2 * c2) * (sqrt(T(1) + s / c2) - T(1));
+      ratio = T(2) / (sqrt(T(1) + x) + T(1));
       break;
     default:
       return T(1);
   }
-  return sqrt(rho / s);
+  return sqrt(ratio);
 }
 
 inline double robust_rho(double s, LossKind loss, double scale) {
@@ -58,40 +62,55 @@ inline double robust_rho(double s, LossKind loss, double scale) {
   return f * f * s;
 }
 
-// Writes residual_count() residuals for params; returns false if the model produced a
-// non-finite value (Ceres then rejects the step instead of accepting NaN).
+// Writes the residuals of row i (one per fitted channel) for a model already set up with its
+// parameters; returns false if one is not finite (Ceres then rejects the step instead of
+// accepting NaN).
+template <typename T>
+bool row_residuals(const ResidualRows& rows, const ModelEvaluator<T>& model, LossKind loss,
+                   double loss_scale, std::size_t i, T* row_out) {
+  using std::isfinite;
+  const Dataset& d = *rows.data;
+  const std::size_t nc = rows.channels.size();
+  const model::Kinematics k{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]};
+  const model::Resultants<T> r = model(k);
+  T s = T(0);
+  for (std::size_t j = 0; j < nc; ++j) {
+    const Channel c = rows.channels[j];
+    const int ci = static_cast<int>(c);
+    const T& pred = c == Channel::T_x   ? r.T_x
+                    : c == Channel::T_y ? r.T_y
+                    : c == Channel::M_z ? r.M_z
+                                        : r.M_roll;
+    const double w = rows.inverse_sigma(c, i);
+    row_out[j] = w == 0.0 ? T(0) : (pred - d.value[ci][i]) * w;
+    if (loss != LossKind::None) s += row_out[j] * row_out[j];
+  }
+  if (loss != LossKind::None) {
+    const T f = robust_row_factor(s, loss, loss_scale);
+    for (std::size_t j = 0; j < nc; ++j) row_out[j] *= f;
+  }
+  for (std::size_t j = 0; j < nc; ++j)
+    if (!isfinite(row_out[j])) return false;
+  return true;
+}
+
+// Writes residual_count() residuals of rows [begin, end) for a model already set up.
+template <typename T>
+bool evaluate_residuals(const ResidualRows& rows, const ModelEvaluator<T>& model, LossKind loss,
+                        double loss_scale, T* out) {
+  const std::size_t nc = rows.channels.size();
+  for (std::size_t i = rows.begin; i < rows.end; ++i)
+    if (!row_residuals(rows, model, loss, loss_scale, i, out + (i - rows.begin) * nc)) return false;
+  return true;
+}
+
+// The same for a parameter vector (sets the model up first).
 template <typename T>
 bool evaluate_residuals(const ResidualRows& rows, ModelKind kind,
                         const model::PressureLaw<double>& law, LossKind loss, double loss_scale,
                         const T* params, T* out) {
-  using std::isfinite;
   const ModelEvaluator<T> model(kind, law, params);
-  const Dataset& d = *rows.data;
-  const std::size_t nc = rows.channels.size();
-  for (std::size_t i = rows.begin; i < rows.end; ++i) {
-    const model::Kinematics k{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]};
-    const model::Resultants<T> r = model(k);
-    T* row_out = out + (i - rows.begin) * nc;
-    T s = T(0);
-    for (std::size_t j = 0; j < nc; ++j) {
-      const Channel c = rows.channels[j];
-      const int ci = static_cast<int>(c);
-      const T& pred = c == Channel::T_x   ? r.T_x
-                      : c == Channel::T_y ? r.T_y
-                      : c == Channel::M_z ? r.M_z
-                                          : r.M_roll;
-      const double w = rows.inverse_sigma(c, i);
-      row_out[j] = w == 0.0 ? T(0) : (pred - d.value[ci][i]) * w;
-      s += row_out[j] * row_out[j];
-    }
-    if (loss != LossKind::None) {
-      const T f = robust_row_factor(s, loss, loss_scale);
-      for (std::size_t j = 0; j < nc; ++j) row_out[j] *= f;
-    }
-    for (std::size_t j = 0; j < nc; ++j)
-      if (!isfinite(row_out[j])) return false;
-  }
-  return true;
+  return evaluate_residuals(rows, model, loss, loss_scale, out);
 }
 
 }  // namespace frictionid

@@ -27,6 +27,7 @@
 #include "model/coefficients.hpp"
 #include "model/kinematics.hpp"
 #include "model/pressure_law.hpp"
+#include "model/scalar_ops.hpp"
 
 namespace frictionid::model {
 
@@ -69,9 +70,9 @@ ApproximantShape<T> approximant_shape(const LawMoments<T>& mo) {
 // eps/sqrt(eps^2 + c), written to stay finite for eps = 0 and eps = inf.
 template <typename T>
 T saturating(double eps, const T& c) {
-  using std::sqrt;
-  if (eps <= 1.0) return eps / sqrt(T(eps * eps) + c);
-  return T(1) / sqrt(T(1) + c / (eps * eps));
+  if (eps <= 1.0) return eps * inv_sqrt(T(eps * eps) + c);
+  const double q = 1.0 / eps;
+  return inv_sqrt(T(1) + c * (q * q));
 }
 
 // The shape constants are plain doubles: the pressure law of a closed-form fit is fixed, so
@@ -79,7 +80,6 @@ T saturating(double eps, const T& c) {
 template <typename T>
 Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantParams<T>& p,
                                      const ApproximantShape<double>& shape, const Kinematics& k) {
-  using std::sqrt;
   const SlipGeometry g = slip_geometry(k);
   Resultants<T> r;
   r.M_roll = p.h * k.N * k.R * shape.rho_roll;
@@ -97,41 +97,46 @@ Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantPara
   const T t = saturating(eps, p.a);
   T p_hat;
   if (form == ApproximantForm::Seed) {
-    p_hat = small ? eps / sqrt((T(1) + p.b * e2) * (T(e2) + p.a))
-                  : q / sqrt((T(inv2) + p.b) * (T(1) + p.a * inv2));
+    p_hat = small ? eps * inv_sqrt((T(1) + p.b * e2) * (T(e2) + p.a))
+                  : q * inv_sqrt((T(inv2) + p.b) * (T(1) + p.a * inv2));
   } else {
-    p_hat = small ? p.p0 / sqrt(T(1) + p.b * e2) : p.p0 * q / sqrt(T(inv2) + p.b);
+    p_hat = small ? p.p0 * inv_sqrt(T(1) + p.b * e2) : (p.p0 * q) * inv_sqrt(T(inv2) + p.b);
+  }
+  const T F0 = p.f * k.N;
+  const T M0 = (T(1) + p.kappa) * (0.5 * shape.mu_M * k.R) * F0;
+  if (sa == 0.0) {
+    // Slip along the x axis (ca = +-1) or pure spin: d11 = 1, d12 = 0, d22 = kappa, m(alpha) = m
+    // and every tilt stand-in but p_hat drops out; the common case of test-rig data, and half
+    // the arithmetic of the general case below.
+    const T g_aligned = small ? inv_sqrt(T(1) + p.m * e2) : q * inv_sqrt(T(inv2) + p.m);
+    r.T_x = F0 * (ca * t);
+    r.T_y = F0 * p.kappa * p.h * (s * p_hat);
+    r.M_z = M0 * s * g_aligned;
+    return r;
   }
   const T d11 = T(ca * ca) + p.kappa * (sa * sa);
   const T d22 = T(sa * sa) + p.kappa * (ca * ca);
   const T d12 = (p.kappa - T(1)) * (sa * ca);
   const T m_alpha = p.m * (p.kappa * p.kappa) / (d22 * d22);
-  const T g_hat = small ? T(1) / sqrt(T(1) + m_alpha * e2) : q / sqrt(T(inv2) + m_alpha);
+  const T g_hat = small ? inv_sqrt(T(1) + m_alpha * e2) : q * inv_sqrt(T(inv2) + m_alpha);
   // The tilt stand-ins act only off the principal axis (sin(a) != 0; d12 = 0 otherwise).
-  double s_hat = 0.0, u_hat = 0.0, x_hat = 0.0, v_hat = 0.0;
-  if (sa != 0.0) {
-    // s_hat = p0/(1 + b_S eps^2)^(3/2); u_hat likewise: both decay, written for eps = inf too.
-    const double sw = small ? 1.0 / (1.0 + shape.b_S * e2) : inv2 / (inv2 + shape.b_S);
-    s_hat = shape.p0_law * sw * std::sqrt(sw);
-    // eps (1 + c eps^2)^(-3/2) = eps^-2 (eps^-2 + c)^(-3/2) for large eps.
-    const double uw = small ? 1.0 / (1.0 + shape.c_U * e2) : 1.0 / (inv2 + shape.c_U);
-    u_hat = shape.u_scale * (small ? eps : inv2) * uw * std::sqrt(uw);
-    x_hat = saturating(eps, shape.c_X);
-    v_hat = saturating(eps, shape.c_V);
-  }
+  // s_hat = p0/(1 + b_S eps^2)^(3/2); u_hat likewise: both decay, written for eps = inf too.
+  const double sw = small ? 1.0 / (1.0 + shape.b_S * e2) : inv2 / (inv2 + shape.b_S);
+  const double s_hat = shape.p0_law * sw * std::sqrt(sw);
+  // eps (1 + c eps^2)^(-3/2) = eps^-2 (eps^-2 + c)^(-3/2) for large eps.
+  const double uw = small ? 1.0 / (1.0 + shape.c_U * e2) : 1.0 / (inv2 + shape.c_U);
+  const double u_hat = shape.u_scale * (small ? eps : inv2) * uw * std::sqrt(uw);
+  const double x_hat = saturating(eps, shape.c_X);
+  const double v_hat = saturating(eps, shape.c_V);
 
-  const T F0 = p.f * k.N;
   const T base = t + p.h * (s * sa) * s_hat;
   const T tilt = p.h * (s * ca) * p_hat;
   const T t_par = F0 * (d11 * base + d12 * tilt);
   const T t_perp = F0 * (d12 * base + d22 * tilt);
   r.T_x = t_par * ca - t_perp * sa;
   r.T_y = t_par * sa + t_perp * ca;
-  const T M0 = (T(1) + p.kappa) * 0.5 * shape.mu_M * F0 * k.R;
-  r.M_z = M0 * s * g_hat;
-  if (sa != 0.0)
-    r.M_z += F0 * k.R * p.h * shape.rho_roll *
-             (ca * d12 * (x_hat - u_hat) - sa * (d22 * u_hat - d11 * v_hat));
+  r.M_z = M0 * s * g_hat + F0 * k.R * p.h * shape.rho_roll *
+                               (ca * d12 * (x_hat - u_hat) - sa * (d22 * u_hat - d11 * v_hat));
   return r;
 }
 

@@ -26,7 +26,11 @@ struct SlipGeometry {
 
 inline SlipGeometry slip_geometry(const Kinematics& k) {
   SlipGeometry g;
-  g.v = std::hypot(k.v_x, k.v_y);
+  // hypot guards against overflow at a cost; plain sqrt is exact enough for ordinary magnitudes.
+  const double big = std::fmax(std::fabs(k.v_x), std::fabs(k.v_y));
+  g.v = k.v_y == 0.0                  ? std::fabs(k.v_x)
+        : big < 1e150 && big > 1e-150 ? std::sqrt(k.v_x * k.v_x + k.v_y * k.v_y)
+                                      : std::hypot(k.v_x, k.v_y);
   g.cos_alpha = g.v > 0.0 ? k.v_x / g.v : 1.0;  // pure spin: any alpha gives the same forces
   g.sin_alpha = g.v > 0.0 ? k.v_y / g.v : 0.0;
   g.spin_sign = k.omega > 0.0 ? 1.0 : (k.omega < 0.0 ? -1.0 : 0.0);

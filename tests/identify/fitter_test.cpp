@@ -162,6 +162,41 @@ TEST(Fitter, ReportIsByteIdenticalWithOneOrTwoSolverThreads) {
   EXPECT_EQ(report_json(Fitter(s).fit(d)).dump(2), one);
 }
 
+// A robust loss must not break down when the residuals vanish (noise-free data): its factor
+// and derivative are evaluated without cancellation.
+TEST(Fitter, RobustLossesOnNoiseFreeDataConvergeToTheTruth) {
+  const Law law = Law::hertz();
+  const auto truth = truth_params(law);
+  const Dataset d =
+      generate_dataset(ModelKind::Seed, law, truth, SyntheticDesign{}, NoiseSpec{}, 5);
+  for (LossKind loss : {LossKind::Huber, LossKind::Cauchy, LossKind::SoftL1}) {
+    FitSettings s = settings_for(ModelKind::Seed, law);
+    s.loss = loss;
+    const FitResult r = Fitter(s).fit(d);
+    EXPECT_TRUE(r.solver.converged) << r.solver.termination;
+    for (const auto& p : r.parameters)
+      EXPECT_GE(matched_digits(p.value, truth[*param_index(p.name)]), 9.0) << p.name;
+  }
+}
+
+// More rows than the global subsample: the starts are fitted on the subsample and the best is
+// refined on all rows, which must still reach the optimum of all rows.
+TEST(Fitter, LargeDataRefinesTheBestSubsampleFitOnAllRows) {
+  const Law law = Law::hertz();
+  const auto truth = truth_params(law);
+  SyntheticDesign design;
+  design.rows = 5000;
+  const Dataset d = generate_dataset(ModelKind::Seed, law, truth, design, NoiseSpec{}, 8);
+  FitSettings s = settings_for(ModelKind::Seed, law);
+  s.global_subsample = 300;
+  const FitResult r = Fitter(s).fit(d);
+  EXPECT_TRUE(r.global.local_fits_on_subsample);
+  EXPECT_EQ(r.global.subsample_rows, 295u);  // every 17th row
+  EXPECT_TRUE(r.solver.converged);
+  for (const auto& p : r.parameters)
+    EXPECT_GE(matched_digits(p.value, truth[*param_index(p.name)]), 10.0) << p.name;
+}
+
 TEST(Fitter, RequestedChannelThatNoRowMeasuresIsReportedNotFitted) {
   const Law law = Law::hertz();
   Dataset d =

@@ -1,5 +1,6 @@
 #include "identify/residuals.hpp"
 
+#include <ceres/jet.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,6 +24,29 @@ TEST(Residuals, RobustRowFactorTurnsTheSquaredNormIntoTheLoss) {
     EXPECT_NEAR(sq(LossKind::SoftL1), soft, 1e-12 * soft);
     EXPECT_EQ(sq(LossKind::None), s);
   }
+}
+
+// Near an exact fit (s -> 0) the loss must behave like least squares, derivatives included:
+// rho(s)/s = 1 - s/(2c^2) + ... (Cauchy), 1 - s/(4c^2) + ... (soft L1), so the factor's slope
+// at 0 is -1/(4c^2) and -1/(8c^2); elsewhere it matches central differences.
+TEST(Residuals, RobustRowFactorHasFiniteExactDerivativesDownToAnExactFit) {
+  using Jet = ceres::Jet<double, 1>;
+  const double c = 1.5, c2 = c * c;
+  for (double s : {1e-30, 1e-20, 1e-12, 1e-6}) {
+    const Jet fc = robust_row_factor(Jet(s, 0), LossKind::Cauchy, c);
+    const Jet fs = robust_row_factor(Jet(s, 0), LossKind::SoftL1, c);
+    EXPECT_NEAR(fc.a, 1.0, 1e-6);
+    EXPECT_NEAR(fs.a, 1.0, 1e-6);
+    EXPECT_NEAR(fc.v[0], -1.0 / (4 * c2), 1e-5 / c2) << s;
+    EXPECT_NEAR(fs.v[0], -1.0 / (8 * c2), 1e-5 / c2) << s;
+  }
+  for (LossKind k : {LossKind::Huber, LossKind::Cauchy, LossKind::SoftL1})
+    for (double s : {1e-4, 5e-4, 2e-3, 0.5, 3.0, 40.0}) {
+      const double h = 1e-4 * s;
+      const double fd = (robust_row_factor(s + h, k, c) - robust_row_factor(s - h, k, c)) / (2 * h);
+      EXPECT_NEAR(robust_row_factor(Jet(s, 0), k, c).v[0], fd, 1e-6 * (std::fabs(fd) + 1e-3))
+          << static_cast<int>(k) << " " << s;
+    }
 }
 
 TEST(Residuals, WhiteningDividesByTheSigmaColumnOrTheChannelScale) {

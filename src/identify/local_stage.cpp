@@ -1,0 +1,339 @@
+// Ceres adapter of the local stage. The only translation unit that includes ceres.h.
+//
+// All rows go to Ceres as one residual block in normal-equations form (normal_equations.hpp):
+// each Jacobian evaluation runs the autodiff model over fixed chunks of rows on every thread,
+// reduces each chunk to the Gram matrix of [J r], sums the chunks in order and hands Ceres the
+// k+1 residuals [w; rho] with Jacobian [A; 0]. Levenberg-Marquardt sees the same cost, gradient,
+// Gauss-Newton matrix and predicted decrease as with the m rows themselves (what
+// DENSE_NORMAL_CHOLESKY would form), but never stores an m x k Jacobian: memory stays O(k^2),
+// the work is one pass over the rows, and the bits do not depend on the thread count.
+// GCC's inliner runs out of budget inside the large Jet expressions of the models and leaves
+// Eigen's 6-element vector operations as calls, which then cost more than the arithmetic.
+#if defined(__GNUC__) && !defined(__clang__) && !defined(EIGEN_STRONG_INLINE)
+#define EIGEN_STRONG_INLINE inline __attribute__((always_inline))
+#endif
+
+#include "identify/local_stage.hpp"
+
+#include <ceres/ceres.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+
+#include "identify/normal_equations.hpp"
+#include "identify/row_chunks.hpp"
+
+namespace frictionid {
+namespace {
+
+std::size_t chunk_begin(const LocalProblem& p, std::size_t c) {
+  return p.rows.begin + c * kChunkRows;
+}
+std::size_t chunk_end(const LocalProblem& p, std::size_t c) {
+  return std::min(chunk_begin(p, c) + kChunkRows, p.rows.end);
+}
+std::size_t problem_chunks(const LocalProblem& p) {
+  return chunk_count(p.rows.end - p.rows.begin);
+}
+
+// Sum of squared residuals over all rows in plain doubles; +inf if any is not finite.
+double sum_of_squares(const LocalProblem& p, const ParamVector& x) {
+  const FitSettings& s = *p.settings;
+  const ModelEvaluator<double> model(s.model, s.law, x.data());
+  const std::size_t chunks = problem_chunks(p);
+  std::vector<double> part(chunks, 0.0);
+  std::vector<char> good(chunks, 1);
+  for_each_chunk(chunks, p.threads, [&](std::size_t c) {
+    double buf[kChannelCount];
+    double sum = 0.0;
+    const std::size_t nc = p.rows.channels.size();
+    for (std::size_t i = chunk_begin(p, c); i < chunk_end(p, c); ++i) {
+      if (!row_residuals(p.rows, model, s.loss, s.loss_scale, i, buf)) {
+        good[c] = 0;
+        return;
+      }
+      for (std::size_t j = 0; j < nc; ++j) sum += buf[j] * buf[j];
+    }
+    part[c] = sum;
+  });
+  double total = 0.0;
+  for (std::size_t c = 0; c < chunks; ++c) {
+    if (!good[c]) return std::numeric_limits<double>::infinity();
+    total += part[c];
+  }
+  return total;
+}
+
+// Autodiff passes with Jets as wide as the free parameters.
+template <int N>
+struct JetPasses {
+  using Jet = ceres::Jet<double, N>;
+  // One chunk's residual rows: N derivative columns, then the residual.
+  using Block = Eigen::Matrix<double, Eigen::Dynamic, N + 1>;
+  using Gram = Eigen::Matrix<double, N + 1, N + 1>;
+
+  static ParamVector with_free(const LocalProblem& p, const ParamVector& base, const double* z) {
+    ParamVector x = base;
+    for (int j = 0; j < N; ++j) x[p.free[j]] = z[j];
+    return x;
+  }
+
+  static std::array<Jet, kParamCount> seeded(const LocalProblem& p, const ParamVector& x) {
+    std::array<Jet, kParamCount> pj;
+    for (int i = 0; i < kParamCount; ++i) pj[i] = Jet(x[i]);
+    for (int j = 0; j < N; ++j) pj[p.free[j]] = Jet(x[p.free[j]], j);
+    return pj;
+  }
+
+  // Fills b with the chunk's rows; false if a residual or derivative is not finite.
+  static bool fill(const LocalProblem& p, const ModelEvaluator<Jet>& model, std::size_t c, Block& b,
+                   double& sum_sq) {
+    const FitSettings& s = *p.settings;
+    const std::size_t nc = p.rows.channels.size();
+    const std::size_t i0 = chunk_begin(p, c), i1 = chunk_end(p, c);
+    b.resize(static_cast<Eigen::Index>((i1 - i0) * nc), N + 1);
+    Jet buf[kChannelCount];
+    Eigen::Index row = 0;
+    double sum = 0.0;  // a local: sum_sq may share a cache line with another thread's
+    for (std::size_t i = i0; i < i1; ++i) {
+      if (!row_residuals(p.rows, model, s.loss, s.loss_scale, i, buf)) return false;
+      for (std::size_t j = 0; j < nc; ++j, ++row) {
+        b.template leftCols<N>().row(row) = buf[j].v.transpose();
+        b(row, N) = buf[j].a;
+        sum += buf[j].a * buf[j].a;
+      }
+    }
+    sum_sq = sum;
+    return true;
+  }
+
+  static bool normal_equations(const LocalProblem& p, const ParamVector& x, NormalEquations& ne) {
+    const FitSettings& s = *p.settings;
+    const auto pj = seeded(p, x);
+    const ModelEvaluator<Jet> model(s.model, s.law, pj.data());
+    const std::size_t chunks = problem_chunks(p);
+    std::vector<Gram> gram(chunks);
+    std::vector<double> sum_sq(chunks, 0.0);
+    std::vector<char> good(chunks, 1);
+    for_each_chunk(chunks, p.threads, [&](std::size_t c) {
+      thread_local Block b;
+      if (!fill(p, model, c, b, sum_sq[c])) {
+        good[c] = 0;
+        return;
+      }
+      // Column dot products: 7 columns are too narrow for a blocked matrix product to pay.
+      for (int a = 0; a <= N; ++a)
+        for (int k = 0; k <= a; ++k) gram[c](a, k) = gram[c](k, a) = b.col(a).dot(b.col(k));
+    });
+    Gram total = Gram::Zero();
+    ne.rtr = 0.0;
+    for (std::size_t c = 0; c < chunks; ++c) {
+      if (!good[c]) return false;
+      total += gram[c];
+      ne.rtr += sum_sq[c];
+    }
+    ne.jtj = total.template topLeftCorner<N, N>();
+    ne.jtr = total.template topRightCorner<N, 1>();
+    return true;
+  }
+
+  // TSQR: each chunk's Jacobian to its triangular factor, the factors stacked in chunk order.
+  static std::optional<JacobianFactor> factor(const LocalProblem& p, const ParamVector& x) {
+    const FitSettings& s = *p.settings;
+    const auto pj = seeded(p, x);
+    const ModelEvaluator<Jet> model(s.model, s.law, pj.data());
+    const std::size_t chunks = problem_chunks(p);
+    std::vector<Eigen::MatrixXd> rc(chunks);
+    std::vector<double> sum_sq(chunks, 0.0);
+    std::vector<char> good(chunks, 1);
+    for_each_chunk(chunks, p.threads, [&](std::size_t c) {
+      thread_local Block b;
+      if (!fill(p, model, c, b, sum_sq[c])) {
+        good[c] = 0;
+        return;
+      }
+      rc[c] = triangular(b.template leftCols<N>());
+    });
+    JacobianFactor out;
+    Eigen::MatrixXd r = Eigen::MatrixXd::Zero(N, N), stacked(2 * N, N);
+    double total = 0.0;
+    for (std::size_t c = 0; c < chunks; ++c) {
+      if (!good[c]) return std::nullopt;
+      stacked << r, rc[c];
+      r = triangular(stacked);
+      total += sum_sq[c];
+    }
+    out.r = r;
+    out.cost = 0.5 * total;
+    return out;
+  }
+
+  // The k x k upper triangular factor R of m = Q R (zero rows below m's rank when m is short).
+  static Eigen::MatrixXd triangular(const Eigen::MatrixXd& m) {
+    Eigen::MatrixXd r = Eigen::MatrixXd::Zero(N, N);
+    if (m.rows() == 0) return r;
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(m);
+    const Eigen::Index top = std::min<Eigen::Index>(N, m.rows());
+    r.topRows(top) = qr.matrixQR().topRows(top).template triangularView<Eigen::Upper>();
+    return r;
+  }
+};
+
+// The whole problem as one residual block of N + 1 residuals (see the top of this file).
+template <int N>
+class NormalEquationsCost final : public ceres::CostFunction {
+ public:
+  NormalEquationsCost(const LocalProblem& p, const ParamVector& base) : p_(p), base_(base) {
+    set_num_residuals(N + 1);
+    mutable_parameter_block_sizes()->push_back(N);
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const ParamVector x = JetPasses<N>::with_free(p_, base_, parameters[0]);
+    if (jacobians == nullptr || jacobians[0] == nullptr) {
+      const double ss = sum_of_squares(p_, x);
+      if (!std::isfinite(ss)) return false;
+      for (int j = 0; j < N; ++j) residuals[j] = 0.0;
+      residuals[N] = std::sqrt(ss);
+      return true;
+    }
+    NormalEquations ne;
+    if (!JetPasses<N>::normal_equations(p_, x, ne)) return false;
+    const SquareRootForm f = square_root_form(ne);
+    for (int i = 0; i < N; ++i) residuals[i] = f.w[i];
+    residuals[N] = f.rho;
+    double* jac = jacobians[0];  // row-major (N + 1) x N
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j) jac[i * N + j] = f.a(i, j);
+    for (int j = 0; j < N; ++j) jac[N * N + j] = 0.0;
+    return true;
+  }
+
+ private:
+  const LocalProblem& p_;
+  ParamVector base_;
+};
+
+template <int N>
+ceres::CostFunction* make_cost_n(const LocalProblem& p, const ParamVector& base) {
+  return new NormalEquationsCost<N>(p, base);
+}
+template <int N>
+bool normal_equations_n(const LocalProblem& p, const ParamVector& x, NormalEquations& out) {
+  return JetPasses<N>::normal_equations(p, x, out);
+}
+template <int N>
+std::optional<JacobianFactor> factor_n(const LocalProblem& p, const ParamVector& x) {
+  return JetPasses<N>::factor(p, x);
+}
+
+// Jet width is a compile-time constant: dispatch on the number of free parameters.
+void check_width(std::size_t k) {
+  if (k < 1 || k > kParamCount) throw std::logic_error("free parameter count out of range");
+}
+std::unique_ptr<ceres::CostFunction> make_cost_function(const LocalProblem& p,
+                                                        const ParamVector& base) {
+  using Maker = ceres::CostFunction* (*)(const LocalProblem&, const ParamVector&);
+  static constexpr Maker makers[kParamCount] = {make_cost_n<1>, make_cost_n<2>, make_cost_n<3>,
+                                                make_cost_n<4>, make_cost_n<5>, make_cost_n<6>,
+                                                make_cost_n<7>, make_cost_n<8>, make_cost_n<9>};
+  check_width(p.free.size());
+  return std::unique_ptr<ceres::CostFunction>(makers[p.free.size() - 1](p, base));
+}
+
+class Callback : public ceres::IterationCallback {
+ public:
+  Callback(const std::atomic<bool>* cancel, bool progress, int start, int starts)
+      : cancel_(cancel), progress_(progress), start_(start), starts_(starts) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& it) override {
+    if (progress_)
+      std::fprintf(stderr, "\rfrictionid: local fit %d/%d, iteration %d, cost %.6e   ", start_,
+                   starts_, it.iteration, it.cost);
+    if (cancel_ && cancel_->load()) return ceres::SOLVER_ABORT;
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const std::atomic<bool>* cancel_;
+  bool progress_;
+  int start_, starts_;
+};
+
+}  // namespace
+
+double problem_cost(const LocalProblem& p, const ParamVector& x) {
+  return 0.5 * sum_of_squares(p, x);
+}
+
+bool normal_equations(const LocalProblem& p, const ParamVector& x, NormalEquations& out) {
+  using Pass = bool (*)(const LocalProblem&, const ParamVector&, NormalEquations&);
+  static constexpr Pass passes[kParamCount] = {
+      normal_equations_n<1>, normal_equations_n<2>, normal_equations_n<3>,
+      normal_equations_n<4>, normal_equations_n<5>, normal_equations_n<6>,
+      normal_equations_n<7>, normal_equations_n<8>, normal_equations_n<9>};
+  check_width(p.free.size());
+  return passes[p.free.size() - 1](p, x, out);
+}
+
+std::optional<JacobianFactor> jacobian_factor(const LocalProblem& p, const ParamVector& x) {
+  using Factor = std::optional<JacobianFactor> (*)(const LocalProblem&, const ParamVector&);
+  static constexpr Factor factors[kParamCount] = {factor_n<1>, factor_n<2>, factor_n<3>,
+                                                  factor_n<4>, factor_n<5>, factor_n<6>,
+                                                  factor_n<7>, factor_n<8>, factor_n<9>};
+  check_width(p.free.size());
+  return factors[p.free.size() - 1](p, x);
+}
+
+LocalOutcome local_fit(const LocalProblem& p, const ParamVector& start,
+                       const std::atomic<bool>* cancel, int start_index, int starts) {
+  const FitSettings& s = *p.settings;
+  LocalOutcome out;
+  out.x = start;
+  if (p.free.empty()) {
+    out.cost = problem_cost(p, out.x);
+    if (!std::isfinite(out.cost)) out.cost = std::numeric_limits<double>::infinity();
+    out.termination = ceres::TerminationTypeToString(ceres::CONVERGENCE);
+    out.converged = true;
+    return out;
+  }
+  std::vector<double> z;
+  for (int i : p.free) z.push_back(out.x[i]);
+  ceres::Problem problem;
+  problem.AddResidualBlock(make_cost_function(p, start).release(), nullptr, z.data());
+  for (std::size_t j = 0; j < p.free.size(); ++j) {
+    problem.SetParameterLowerBound(z.data(), static_cast<int>(j), s.params[p.free[j]].lower);
+    problem.SetParameterUpperBound(z.data(), static_cast<int>(j), s.params[p.free[j]].upper);
+  }
+  ceres::Solver::Options o;
+  // The block is (k+1) x k: a dense QR of it costs nothing next to one pass over the rows.
+  o.linear_solver_type = ceres::DENSE_QR;
+  // Ceres' projected line search under bounds costs one more Jacobian per iteration; bounds
+  // stay enforced by projecting the trust-region step, so skip it.
+  o.max_num_line_search_step_size_iterations = 0;
+  o.max_num_iterations = s.max_iterations;
+  o.function_tolerance = s.function_tolerance;
+  o.gradient_tolerance = s.gradient_tolerance;
+  o.parameter_tolerance = s.parameter_tolerance;
+  o.num_threads = 1;  // rows are spread over threads inside the block (row_chunks.hpp)
+  o.logging_type = ceres::SILENT;
+  o.minimizer_progress_to_stdout = false;
+  Callback cb(cancel, s.progress, start_index, starts);
+  o.callbacks.push_back(&cb);
+  ceres::Solver::Summary summary;
+  ceres::Solve(o, &problem, &summary);
+  for (std::size_t j = 0; j < p.free.size(); ++j) out.x[p.free[j]] = z[j];
+  out.full_report = summary.FullReport();
+  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  out.termination = ceres::TerminationTypeToString(summary.termination_type);
+  out.converged = summary.termination_type == ceres::CONVERGENCE ||
+                  summary.termination_type == ceres::USER_SUCCESS;
+  out.cost = summary.final_cost;
+  if (!std::isfinite(out.cost)) out.cost = std::numeric_limits<double>::infinity();
+  return out;
+}
+
+}  // namespace frictionid

@@ -1,0 +1,58 @@
+// The local stage: Ceres' Levenberg-Marquardt from one start, with autodiff Jacobians over all
+// rows, and the whitened Jacobian at the optimum for the statistics.
+#pragma once
+
+#include <Eigen/Dense>
+#include <array>
+#include <atomic>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "identify/dataset.hpp"
+#include "identify/fit_settings.hpp"
+#include "identify/normal_equations.hpp"
+#include "identify/residuals.hpp"
+
+namespace frictionid {
+
+using ParamVector = std::array<double, kParamCount>;
+
+// Rows, channels and whitening of one problem, the free parameters and how to evaluate them.
+struct LocalProblem {
+  ResidualRows rows;  // all rows of the problem
+  const FitSettings* settings = nullptr;
+  std::vector<int> free;  // parameter indices Ceres moves; the rest come from the start
+  int threads = 1;
+};
+
+struct LocalOutcome {
+  ParamVector x{};
+  double cost = 0.0;  // 1/2 sum of squared (robustified) residuals; +inf if the fit failed
+  int iterations = 0;
+  std::string termination;  // Ceres' termination type, e.g. CONVERGENCE
+  bool converged = false;
+  std::string full_report;  // Ceres' FullReport, for diagnostics
+};
+
+// Ceres from `start`; cancel, when set, stops it at the next iteration.
+LocalOutcome local_fit(const LocalProblem& p, const ParamVector& start,
+                       const std::atomic<bool>* cancel, int start_index, int starts);
+
+// 1/2 sum of squared (robustified) residuals at x, or +inf where the model is not finite.
+double problem_cost(const LocalProblem& p, const ParamVector& x);
+
+// J^T J, J^T r and r^T r over all rows at x (J with respect to the free parameters): one
+// autodiff pass, the work of one Jacobian evaluation of the local stage. False where the model
+// is not finite.
+bool normal_equations(const LocalProblem& p, const ParamVector& x, NormalEquations& out);
+
+// The whitened Jacobian at x with respect to the free parameters, reduced to its k x k
+// triangular factor R (J = Q R: same singular values and covariance), and the cost there.
+struct JacobianFactor {
+  Eigen::MatrixXd r;
+  double cost = 0.0;
+};
+std::optional<JacobianFactor> jacobian_factor(const LocalProblem& p, const ParamVector& x);
+
+}  // namespace frictionid

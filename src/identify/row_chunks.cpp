@@ -1,0 +1,50 @@
+#include "identify/row_chunks.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace frictionid {
+
+int resolve_thread_count(int requested) {
+  if (requested > 0) return requested;
+  const unsigned hw = std::thread::hardware_concurrency();
+  return hw > 0 ? static_cast<int>(std::min(hw, 64u)) : 1;
+}
+
+void for_each_chunk(std::size_t count, int threads, const std::function<void(std::size_t)>& work) {
+  // A thread costs tens of microseconds to start: not worth it for a few chunks.
+  const std::size_t parts =
+      std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), count / 4);
+  if (parts <= 1) {
+    for (std::size_t c = 0; c < count; ++c) work(c);
+    return;
+  }
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto run = [&] {
+    for (;;) {
+      const std::size_t c = next.fetch_add(1, std::memory_order_relaxed);
+      if (c >= count) return;
+      try {
+        work(c);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+        next.store(count);
+        return;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < parts; ++t) pool.emplace_back(run);
+  run();
+  for (auto& th : pool) th.join();
+  if (error) std::rethrow_exception(error);
+}
+
+}  // namespace frictionid

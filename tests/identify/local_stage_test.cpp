@@ -1,0 +1,154 @@
+#include "identify/local_stage.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "identify/synthetic_data.hpp"
+
+namespace frictionid {
+namespace {
+
+using Law = model::PressureLaw<double>;
+
+struct Fixture {
+  Dataset data;
+  FitSettings settings;
+  LocalProblem problem;
+  ParamVector truth{};
+};
+
+// Rows in several slip directions, all four channels, 1 % noise; free = every model parameter.
+void make(Fixture& f, ModelKind kind, const Law& law, std::size_t rows, LossKind loss) {
+  f.settings.model = kind;
+  f.settings.law = law;
+  f.settings.params = default_parameter_settings(law);
+  f.settings.loss = loss;
+  f.settings.loss_scale = 1.5;
+  f.truth = default_parameters(law, 0.85, 1.3, 0.12);
+  SyntheticDesign design;
+  design.rows = rows;
+  design.slip_angles = {0.0, 0.4, 1.2, -2.0};
+  f.data = generate_dataset(kind, law, f.truth, design, NoiseSpec{0.01, 0.0, false}, 17);
+  f.problem.rows.data = &f.data;
+  f.problem.rows.channels = {Channel::T_x, Channel::T_y, Channel::M_z, Channel::M_roll};
+  f.problem.rows.scale = {2000.0, 100.0, 50.0, 10.0};
+  f.problem.rows.begin = 0;
+  f.problem.rows.end = f.data.rows();
+  f.problem.settings = &f.settings;
+  f.problem.free = model_parameters(kind, law.kind);
+  f.problem.threads = 1;
+}
+
+std::vector<double> residuals_at(const Fixture& f, const ParamVector& x) {
+  std::vector<double> r(f.problem.rows.residual_count());
+  EXPECT_TRUE(evaluate_residuals(f.problem.rows, f.settings.model, f.settings.law, f.settings.loss,
+                                 f.settings.loss_scale, x.data(), r.data()));
+  return r;
+}
+
+// J^T J, J^T r and r^T r of the autodiff pass against a Jacobian by central differences of the
+// plain-double residuals.
+void expect_normal_equations_match_differences(ModelKind kind, const Law& law, LossKind loss) {
+  Fixture f;
+  make(f, kind, law, 300, loss);
+  ParamVector x = f.truth;
+  for (int i : f.problem.free) x[i] *= 1.03;  // off the optimum: J^T r is not small
+  const std::size_t k = f.problem.free.size();
+  const std::vector<double> r = residuals_at(f, x);
+  Eigen::MatrixXd j(static_cast<Eigen::Index>(r.size()), static_cast<Eigen::Index>(k));
+  for (std::size_t c = 0; c < k; ++c) {
+    const int i = f.problem.free[c];
+    const double h = 1e-6 * std::max(std::fabs(x[i]), 1e-2);
+    ParamVector up = x, down = x;
+    up[i] += h;
+    down[i] -= h;
+    const auto ru = residuals_at(f, up), rd = residuals_at(f, down);
+    for (std::size_t m = 0; m < r.size(); ++m)
+      j(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(c)) = (ru[m] - rd[m]) / (2 * h);
+  }
+  const Eigen::Map<const Eigen::VectorXd> rv(r.data(), static_cast<Eigen::Index>(r.size()));
+  NormalEquations ne;
+  ASSERT_TRUE(normal_equations(f.problem, x, ne));
+  const Eigen::MatrixXd jtj = j.transpose() * j;
+  const Eigen::VectorXd jtr = j.transpose() * rv;
+  for (Eigen::Index a = 0; a < jtj.rows(); ++a) {
+    for (Eigen::Index b = 0; b < jtj.cols(); ++b)
+      EXPECT_NEAR(ne.jtj(a, b), jtj(a, b), 1e-6 * std::sqrt(jtj(a, a) * jtj(b, b)))
+          << a << "," << b;
+    EXPECT_NEAR(ne.jtr[a], jtr[a], 1e-6 * std::sqrt(jtj(a, a)) * rv.norm()) << a;
+  }
+  EXPECT_NEAR(ne.rtr, rv.squaredNorm(), 1e-12 * rv.squaredNorm());
+}
+
+TEST(LocalStage, SeedNormalEquationsMatchCentralDifferences) {
+  expect_normal_equations_match_differences(ModelKind::Seed, Law::hertz(), LossKind::None);
+}
+
+TEST(LocalStage, CorrectedNormalEquationsWithHuberLossMatchCentralDifferences) {
+  expect_normal_equations_match_differences(ModelKind::Corrected, Law::parabolic(),
+                                            LossKind::Huber);
+}
+
+TEST(LocalStage, ExactNormalEquationsWithFreePressureExponentMatchCentralDifferences) {
+  expect_normal_equations_match_differences(ModelKind::Exact, Law::power(1.5), LossKind::Cauchy);
+}
+
+TEST(LocalStage, TriangularFactorHasTheGaussNewtonMatrixOfTheRows) {
+  Fixture f;
+  make(f, ModelKind::Seed, Law::hertz(), 2000, LossKind::None);
+  NormalEquations ne;
+  ASSERT_TRUE(normal_equations(f.problem, f.truth, ne));
+  const auto jf = jacobian_factor(f.problem, f.truth);
+  ASSERT_TRUE(jf.has_value());
+  const Eigen::MatrixXd rtr = jf->r.transpose() * jf->r;
+  for (Eigen::Index a = 0; a < rtr.rows(); ++a)
+    for (Eigen::Index b = 0; b < rtr.cols(); ++b)
+      EXPECT_NEAR(rtr(a, b), ne.jtj(a, b), 1e-12 * std::sqrt(ne.jtj(a, a) * ne.jtj(b, b)));
+  EXPECT_NEAR(2.0 * jf->cost, ne.rtr, 1e-13 * ne.rtr);
+  EXPECT_NEAR(problem_cost(f.problem, f.truth), jf->cost, 1e-13 * jf->cost);
+}
+
+TEST(LocalStage, ThreadCountDoesNotChangeASingleBit) {
+  Fixture f;
+  make(f, ModelKind::Seed, Law::hertz(), 5000, LossKind::SoftL1);
+  NormalEquations one, three;
+  ASSERT_TRUE(normal_equations(f.problem, f.truth, one));
+  const auto factor_one = jacobian_factor(f.problem, f.truth);
+  const double cost_one = problem_cost(f.problem, f.truth);
+  f.problem.threads = 3;
+  ASSERT_TRUE(normal_equations(f.problem, f.truth, three));
+  EXPECT_TRUE(one.jtj == three.jtj);
+  EXPECT_TRUE(one.jtr == three.jtr);
+  EXPECT_EQ(one.rtr, three.rtr);
+  EXPECT_TRUE(factor_one->r == jacobian_factor(f.problem, f.truth)->r);
+  EXPECT_EQ(cost_one, problem_cost(f.problem, f.truth));
+}
+
+TEST(LocalStage, LevenbergMarquardtReachesTheOptimumOfNoiseFreeRowsFromANearbyStart) {
+  Fixture f;
+  make(f, ModelKind::Seed, Law::hertz(), 1000, LossKind::None);
+  f.data =
+      generate_dataset(ModelKind::Seed, f.settings.law, f.truth, SyntheticDesign{}, NoiseSpec{}, 4);
+  f.problem.rows.end = f.data.rows();
+  ParamVector start = f.truth;
+  for (int i : f.problem.free) start[i] *= 0.9;
+  const LocalOutcome out = local_fit(f.problem, start, nullptr, 1, 1);
+  EXPECT_TRUE(out.converged) << out.termination;
+  for (int i : f.problem.free) EXPECT_NEAR(out.x[i], f.truth[i], 1e-9 * f.truth[i]) << i;
+  EXPECT_LT(out.cost, 1e-20);
+}
+
+TEST(LocalStage, ANonFiniteModelFailsThePassInsteadOfReturningNaN) {
+  Fixture f;
+  make(f, ModelKind::Seed, Law::hertz(), 300, LossKind::None);
+  f.data.N[123] = std::nan("");  // loaders reject this; the pass must not swallow it either
+  NormalEquations ne;
+  EXPECT_FALSE(normal_equations(f.problem, f.truth, ne));
+  EXPECT_FALSE(jacobian_factor(f.problem, f.truth).has_value());
+  EXPECT_FALSE(std::isfinite(problem_cost(f.problem, f.truth)));
+}
+
+}  // namespace
+}  // namespace frictionid
