@@ -66,7 +66,35 @@ void BM_ExactPower17General(benchmark::State& state) {
 }
 BENCHMARK(BM_ExactPower17General);
 
-template <model::ApproximantForm Form>
+// The exact model with its ring integrals tabulated (what fits, generate and eval --input use):
+// any slip angle, power:1.7; the table is built once outside the timed loop.
+void BM_ExactPower17GeneralTabulated(benchmark::State& state) {
+  const auto law = model::PressureLaw<double>::power(1.7);
+  const model::ExactModel<double> m({0.6, 1.3, 0.2}, law,
+                                    std::make_shared<const model::RingIntegralTable>(law));
+  run(state, m, points(0.01, 100.0, false, 3));
+}
+BENCHMARK(BM_ExactPower17GeneralTabulated);
+
+void BM_ExactHertzObliqueTabulated(benchmark::State& state) {
+  const auto law = model::PressureLaw<double>::hertz();
+  const model::ExactModel<double> m({0.6, 1.3, 0.2}, law,
+                                    std::make_shared<const model::RingIntegralTable>(law));
+  run(state, m, points(0.01, 100.0, false, 2));
+}
+BENCHMARK(BM_ExactHertzObliqueTabulated);
+
+// Building that table (once per fit with a fixed pressure law).
+void BM_RingIntegralTableBuildPower17(benchmark::State& state) {
+  const auto law = model::PressureLaw<double>::power(1.7);
+  for (auto _ : state) {
+    const model::RingIntegralTable t(law);
+    benchmark::DoNotOptimize(&t);
+  }
+}
+BENCHMARK(BM_RingIntegralTableBuildPower17)->Unit(benchmark::kMillisecond);
+
+template <model::ApproximantForm Form, bool Aligned>
 void BM_Approximant(benchmark::State& state) {
   const auto law = model::PressureLaw<double>::power(1.7);
   const auto mo = model::law_moments(law);
@@ -74,7 +102,7 @@ void BM_Approximant(benchmark::State& state) {
   const model::ApproximantParams<double> p{
       0.6, 1.3, 0.2, c.a, Form == model::ApproximantForm::Seed ? c.b : c.b_tilde, c.m, c.p0};
   const auto shape = model::approximant_shape(mo);
-  const auto ks = points(0.01, 100.0, false, 4);
+  const auto ks = points(0.01, 100.0, Aligned, 4);
   std::size_t i = 0;
   for (auto _ : state) {
     auto r = model::approximant_resultants(Form, p, shape, ks[i++ & (kPoints - 1)]);
@@ -82,9 +110,13 @@ void BM_Approximant(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_Approximant<model::ApproximantForm::Seed>)->Name("BM_SeedApproximantGeneral");
-BENCHMARK(BM_Approximant<model::ApproximantForm::Corrected>)
+BENCHMARK(BM_Approximant<model::ApproximantForm::Seed, false>)->Name("BM_SeedApproximantGeneral");
+BENCHMARK(BM_Approximant<model::ApproximantForm::Corrected, false>)
     ->Name("BM_CorrectedApproximantGeneral");
+// Slip along x (v_y = 0): the seed's three published formulas.
+BENCHMARK(BM_Approximant<model::ApproximantForm::Seed, true>)->Name("BM_SeedApproximantAligned");
+BENCHMARK(BM_Approximant<model::ApproximantForm::Corrected, true>)
+    ->Name("BM_CorrectedApproximantAligned");
 
 using Jet = ceres::Jet<double, 9>;
 static_assert(kParamCount == 9, "one Jet component per parameter");
@@ -119,6 +151,21 @@ void BM_ExactPower17FitJacobianRow(benchmark::State& state) {
   run(state, ev, points(0.01, 100.0, false, 5));
 }
 BENCHMARK(BM_ExactPower17FitJacobianRow);
+
+// The same row from the tabulated integrals with n-slopes (a fit's passes on large data).
+void BM_ExactPower17FitJacobianRowTabulated(benchmark::State& state) {
+  using Jet4 = ceres::Jet<double, 4>;
+  const auto law = model::PressureLaw<double>::power(1.7);
+  const auto p = default_parameters(law, 0.6, 1.3, 0.2);
+  std::array<Jet4, kParamCount> pj;
+  for (int i = 0; i < kParamCount; ++i) pj[i] = Jet4(p[i]);
+  int k = 0;
+  for (int i : {kF, kKappa, kH, kN}) pj[i] = Jet4(p[i], k++);
+  const ModelEvaluator<Jet4> ev(ModelKind::Exact, law, pj.data(),
+                                ring_table_for(ModelKind::Exact, law, p[kN], true));
+  run(state, ev, points(0.01, 100.0, false, 5));
+}
+BENCHMARK(BM_ExactPower17FitJacobianRowTabulated);
 
 // The brute-force 2-D integral of the local law (tests/model/reference_integrator.hpp: adaptive
 // Gauss-Kronrod in rho and theta, split at the instantaneous centre) at the accuracy the exact

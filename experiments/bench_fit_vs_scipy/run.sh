@@ -6,8 +6,9 @@
 # 0. Checks that fit_scipy.py's seed model reproduces `frictionid eval --model seed` to 1e-12
 #    relative (aligned and general slip, edge cases), and stops if it does not.
 # 1. For rows in 1e3 1e4 1e5 1e6: generates seed/Hertz data with 1 % noise, then alternates,
-#    REPS times: frictionid's local stage alone (--no-global --param START --starts 1), the full
-#    pipeline (global stage + 4 local fits), and least_squares from START.
+#    REPS times: frictionid's local stage alone (--no-global --param START --starts 1) on every
+#    core (the default) and on one thread, the full pipeline (global stage + 4 local fits on
+#    the subsample + the refinement on all rows), and least_squares from START.
 # 2. Writes runs.csv (every run), results.csv and results.md (medians per size) and results.svg
 #    (log-log time vs rows) next to this script; scratch in out/ (git-ignored).
 # Runs one at a time; wall times depend on the machine's load (recorded in results.md).
@@ -19,6 +20,7 @@ bin="${FRICTIONID:-$root/build/frictionid}"
 [[ "$bin" = /* ]] || bin="$PWD/$bin"
 [[ -x "$bin" ]] || { echo "run.sh: no executable frictionid at $bin (set FRICTIONID)" >&2; exit 1; }
 py=/usr/bin/python3
+"$root/scripts/install-deps" --experiments >&2  # Debian numpy/scipy and gnuplot, if missing
 command -v gnuplot > /dev/null || { echo "run.sh: gnuplot not found" >&2; exit 1; }
 
 # The experiment's knobs (the README's table is for these values).
@@ -29,7 +31,8 @@ SCIPY_ONCE_ABOVE=${SCIPY_ONCE_ABOVE:-120}   # s: a slower scipy fit is not repea
 TRUTH="f=0.85,kappa=1.3,h=0.12,a=0.9,b=20,m=7"
 START="f=0.7,kappa=1,h=0.05,a=0.7,b=25,m=8"
 MODEL=(--model seed --pressure hertz)
-# One thread everywhere: frictionid's default (--threads 1); keep numpy's BLAS serial too.
+# numpy's BLAS stays serial (least_squares is single-threaded Python); frictionid runs its
+# row passes on every core by default and once more with --threads 1.
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 
 out="$here/out"
@@ -115,6 +118,8 @@ for n in "${ROWS[@]}"; do
   for (( rep = 1; rep <= reps; rep++ )); do
     run "$n" "$rep" local "$bin" fit "$data" "${MODEL[@]}" --no-global --param "$START" \
       --starts 1 --report report
+    run "$n" "$rep" local1 "$bin" fit "$data" "${MODEL[@]}" --no-global --param "$START" \
+      --starts 1 --threads 1 --report report
     run "$n" "$rep" full "$bin" fit "$data" "${MODEL[@]}" --report report
     if (( scipy_on )); then
       run "$n" "$rep" scipy "$py" "$here/fit_scipy.py" fit "$data" --param "$START" \
@@ -143,7 +148,7 @@ fi
 import csv, json, math, os, re, statistics, sys
 
 out, here, binary_id, cpus, load_before, load_after, elapsed, start = sys.argv[1:9]
-TIME = re.compile(r"time: global stage ([0-9.]+) s, local fits ([0-9.]+) s, "
+TIME = re.compile(r"time: reading [0-9.]+ s, global stage ([0-9.]+) s, local fits ([0-9.]+) s, "
                   r"statistics and predictions ([0-9.]+) s")
 
 runs = []
@@ -154,7 +159,7 @@ for r in csv.DictReader(open(os.path.join(out, "runs.csv"))):
                command_cpu_s=round(float(r["user_s"]) + float(r["sys_s"]), 3),
                global_s="", local_s="", statistics_s="", solver_wall_s="", solver_cpu_s="",
                cost="", iterations="", nfev="", njev="", termination="")
-    if row["exit"] == 0 and r["method"] in ("local", "full"):
+    if row["exit"] == 0 and r["method"] in ("local", "local1", "full"):
         m = TIME.search(open(os.path.join(d, "stdout")).read())
         rep = json.load(open(os.path.join(d, "report.json")))
         row.update(global_s=float(m.group(1)), local_s=float(m.group(2)),
@@ -184,10 +189,11 @@ def one(rs, key):
 
 summary = []
 for n in sorted({r["rows"] for r in runs}):
-    lo, fu, sc = ok(n, "local"), ok(n, "full"), ok(n, "scipy")
+    lo, l1, fu, sc = ok(n, "local"), ok(n, "local1"), ok(n, "full"), ok(n, "scipy")
     c_lo, c_fu, c_sc = one(lo, "cost"), one(fu, "cost"), one(sc, "cost")
     s = dict(rows=n, runs_local=len(lo), runs_full=len(fu), runs_scipy=len(sc),
              frictionid_local_s=med(lo, "local_s"),
+             frictionid_local_1thread_s=med(l1, "local_s"),
              frictionid_local_command_s=med(lo, "command_wall_s"),
              frictionid_local_command_cpu_s=med(lo, "command_cpu_s"),
              frictionid_full_s=med(fu, "command_wall_s"),
@@ -197,6 +203,7 @@ for n in sorted({r["rows"] for r in runs}):
              scipy_s=med(sc, "solver_wall_s"), scipy_cpu_s=med(sc, "solver_cpu_s"),
              scipy_command_s=med(sc, "command_wall_s"))
     s["ratio_scipy_to_local"] = s["scipy_s"] / s["frictionid_local_s"]
+    s["ratio_scipy_to_local_1thread"] = s["scipy_s"] / s["frictionid_local_1thread_s"]
     # Work-normalised: per row and per Jacobian (Ceres: iteration; scipy: njev, i.e. 1 + 6
     # finite-difference evaluations and one SVD of the scaled Jacobian).
     s["frictionid_local_us_per_row_iteration"] = \
@@ -229,8 +236,8 @@ top = summary[-2:]
 for s in summary:
     s["frictionid_local_s_per_iteration"] = s["frictionid_local_us_per_row_iteration"] * s["rows"] * 1e-6
 slopes = {k: (slope(k), slope(k, top)) for k in
-          ("frictionid_local_s", "frictionid_local_s_per_iteration", "frictionid_full_s",
-           "scipy_s")}
+          ("frictionid_local_s", "frictionid_local_1thread_s", "frictionid_local_s_per_iteration",
+           "frictionid_full_s", "scipy_s")}
 
 def e(n):
     k = round(math.log10(n))
@@ -243,17 +250,21 @@ lines = [
     f"Seed model, Hertz pressure, truth f=0.85,kappa=1.3,h=0.12,a=0.9,b=20,m=7, 1 % noise, "
     f"4 channels; start {start}. {binary_id}; {cpus} CPUs shared with other work, load average "
     f"{load_before} before and {load_after} after; whole run {elapsed} s. Times are wall-clock "
-    f"medians: frictionid local = its reported \"local fits\" time (Ceres only); full = the whole "
-    f"`fit` command (CSV read, global stage, 4 local fits, statistics, report); scipy = the "
-    f"least_squares call only. Costs are ½Σr² at the end of each fit.", "",
-    "| rows | runs (local/full/scipy) | frictionid local [s] | frictionid full [s] | scipy [s] "
-    "| scipy / local | cost frictionid | cost scipy | rel. diff |",
-    "|---:|:---:|---:|---:|---:|---:|---:|---:|---:|"]
+    f"medians: frictionid local = its reported \"local fits\" time (Ceres only), on {cpus} "
+    f"threads (the default) and on 1; full = the whole `fit` command (CSV read, global stage, "
+    f"local fits, statistics, report); scipy = the least_squares call only (single-threaded). "
+    f"Costs are ½Σr² at the end of each fit.", "",
+    "| rows | runs (local/full/scipy) | frictionid local [s] | frictionid local, 1 thread [s] "
+    "| frictionid full [s] | scipy [s] | scipy / local | scipy / local, 1 thread "
+    "| cost frictionid | cost scipy | rel. diff |",
+    "|---:|:---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
 for s in summary:
     lines.append(
         f"| {e(s['rows'])} | {s['runs_local']}/{s['runs_full']}/{s['runs_scipy']} | "
-        f"{sig(s['frictionid_local_s'])} | {sig(s['frictionid_full_s'])} | {sig(s['scipy_s'])} | "
-        f"{s['ratio_scipy_to_local']:.2f} | {s['cost_frictionid_local']:.12g} | "
+        f"{sig(s['frictionid_local_s'])} | {sig(s['frictionid_local_1thread_s'])} | "
+        f"{sig(s['frictionid_full_s'])} | {sig(s['scipy_s'])} | "
+        f"{s['ratio_scipy_to_local']:.1f} | {s['ratio_scipy_to_local_1thread']:.1f} | "
+        f"{s['cost_frictionid_local']:.12g} | "
         f"{s['cost_scipy']:.12g} | {s['rel_diff_scipy_vs_local']:+.1e} |")
 lines += ["", "Work per fit and CPU time (medians; frictionid CPU is the whole command's user + "
           "system time, scipy CPU is the least_squares call's process time):", "",
@@ -293,8 +304,9 @@ set key top left
 set grid
 set title "Seed-model fit: frictionid (Ceres) vs scipy least_squares" noenhanced
 set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05
-plot "$here/results.csv" using 1:5 skip 1 with linespoints pt 7 title "frictionid local stage (Ceres)", \
-     "" using 1:8 skip 1 with linespoints pt 5 title "frictionid full pipeline (whole command)", \
-     "" using 1:12 skip 1 with linespoints pt 9 title "scipy least_squares (trf, 2-point)" noenhanced
+plot "$here/results.csv" using "rows":"frictionid_local_s" with linespoints pt 7 title "frictionid local stage (Ceres), every core", \
+     "" using "rows":"frictionid_local_1thread_s" with linespoints pt 6 title "frictionid local stage, 1 thread", \
+     "" using "rows":"frictionid_full_s" with linespoints pt 5 title "frictionid full pipeline (whole command)", \
+     "" using "rows":"scipy_s" with linespoints pt 9 title "scipy least_squares (trf, 2-point)" noenhanced
 GP
 echo "run.sh: wrote $here/results.md, results.csv, runs.csv and results.svg in ${elapsed} s" >&2

@@ -15,6 +15,7 @@ bin="${FRICTIONID:-$root/build/frictionid}"
 [[ "$bin" = /* ]] || bin="$PWD/$bin"
 [[ -x "$bin" ]] || { echo "run.sh: no executable frictionid at $bin (set FRICTIONID)" >&2; exit 1; }
 py=/usr/bin/python3
+"$root/scripts/install-deps" --experiments >&2  # Debian numpy/scipy and gnuplot, if missing
 
 out="$here/out"
 rm -rf "$out"

@@ -143,6 +143,12 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
   for (int i = 0; i < kParamCount; ++i)
     if (s.params[i].fixed) initial[i] = s.params[i].initial;
 
+  // The exact model with a fixed pressure law: tabulate its ring integrals once for every pass.
+  const bool n_free = s.law.kind == model::PressureKind::Power &&
+                      std::find(p.free.begin(), p.free.end(), kN) != p.free.end();
+  if (s.model == ModelKind::Exact && !n_free)
+    lp.exact_table = ring_table_for(s.model, s.law, initial[kN], false);
+
   // Global stage on a deterministic subsample (every k-th row).
   std::vector<Params> starts;
   res.global.seed = s.seed;
@@ -340,7 +346,7 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
   }
 
   // Per-channel fit quality in the channel's own units, and predictions for plots.
-  const ModelEvaluator<double> model(s.model, s.law, x.data());
+  const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(lp, x, false));
   res.eps.resize(data.rows());
   for (auto& f : res.fitted) f.assign(data.rows(), 0.0);
   for_each_chunk(chunk_count(data.rows()), lp.threads, [&](std::size_t chunk) {

@@ -17,6 +17,7 @@
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -42,7 +43,7 @@ std::size_t problem_chunks(const LocalProblem& p) {
 // Sum of squared residuals over all rows in plain doubles; +inf if any is not finite.
 double sum_of_squares(const LocalProblem& p, const ParamVector& x) {
   const FitSettings& s = *p.settings;
-  const ModelEvaluator<double> model(s.model, s.law, x.data());
+  const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(p, x, false));
   const std::size_t chunks = problem_chunks(p);
   std::vector<double> part(chunks, 0.0);
   std::vector<char> good(chunks, 1);
@@ -113,7 +114,7 @@ struct JetPasses {
   static bool normal_equations(const LocalProblem& p, const ParamVector& x, NormalEquations& ne) {
     const FitSettings& s = *p.settings;
     const auto pj = seeded(p, x);
-    const ModelEvaluator<Jet> model(s.model, s.law, pj.data());
+    const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true));
     const std::size_t chunks = problem_chunks(p);
     std::vector<Gram> gram(chunks);
     std::vector<double> sum_sq(chunks, 0.0);
@@ -144,7 +145,7 @@ struct JetPasses {
   static std::optional<JacobianFactor> factor(const LocalProblem& p, const ParamVector& x) {
     const FitSettings& s = *p.settings;
     const auto pj = seeded(p, x);
-    const ModelEvaluator<Jet> model(s.model, s.law, pj.data());
+    const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true));
     const std::size_t chunks = problem_chunks(p);
     std::vector<Eigen::MatrixXd> rc(chunks);
     std::vector<double> sum_sq(chunks, 0.0);
@@ -264,6 +265,17 @@ class Callback : public ceres::IterationCallback {
 };
 
 }  // namespace
+
+std::shared_ptr<const model::RingIntegralTable> pass_table(const LocalProblem& p,
+                                                           const ParamVector& x, bool n_slopes) {
+  const FitSettings& s = *p.settings;
+  if (s.model != ModelKind::Exact) return nullptr;
+  if (p.exact_table) return p.exact_table;
+  const bool n_free = s.law.kind == model::PressureKind::Power &&
+                      std::find(p.free.begin(), p.free.end(), kN) != p.free.end();
+  if (!n_free || p.rows.end - p.rows.begin < kRingTableMinRows) return nullptr;
+  return ring_table_for(s.model, s.law, x[kN], n_slopes);
+}
 
 double problem_cost(const LocalProblem& p, const ParamVector& x) {
   return 0.5 * sum_of_squares(p, x);

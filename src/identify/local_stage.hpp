@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <array>
 #include <atomic>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,7 +25,14 @@ struct LocalProblem {
   const FitSettings* settings = nullptr;
   std::vector<int> free;  // parameter indices Ceres moves; the rest come from the start
   int threads = 1;
+  // Exact model with a fixed pressure law: its ring integrals tabulated once for the whole fit.
+  // Without one, a free exponent n gets a table per pass when the rows make it worth it.
+  std::shared_ptr<const model::RingIntegralTable> exact_table;
 };
+
+// The ring-integral table a pass at x uses (nullptr: radial quadrature or a closed form).
+std::shared_ptr<const model::RingIntegralTable> pass_table(const LocalProblem& p,
+                                                           const ParamVector& x, bool n_slopes);
 
 struct LocalOutcome {
   ParamVector x{};

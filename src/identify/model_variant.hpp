@@ -86,14 +86,34 @@ inline std::array<double, kParamCount> default_parameters(const model::PressureL
   return p;
 }
 
+// Rows from which a tabulated exact model beats the radial quadrature when the table serves one
+// pass over the rows only (building one costs as much as ~4000 quadrature points).
+inline constexpr std::size_t kRingTableMinRows = 4000;
+
+// A table of law's ring integrals at exponent n (power law; ignored otherwise) for the exact
+// variant, with n-slopes if asked; nullptr for the closed forms and tabulated laws.
+inline std::shared_ptr<const model::RingIntegralTable> ring_table_for(
+    ModelKind kind, const model::PressureLaw<double>& law, double n, bool n_slope) {
+  // A tabulated law is only C^1 at its samples, which the radial rule does not resolve beyond
+  // ~1e-6; a table of that would chase quadrature noise. It keeps the quadrature.
+  if (kind != ModelKind::Exact || law.kind == model::PressureKind::Table) return nullptr;
+  model::PressureLaw<double> at = law;
+  if (at.kind == model::PressureKind::Power) at.n = n;
+  return std::make_shared<const model::RingIntegralTable>(at, n_slope);
+}
+
 // Evaluates one variant for a fixed parameter vector; construct once, call per row.
 template <typename T>
 class ModelEvaluator {
  public:
-  ModelEvaluator(ModelKind kind, const model::PressureLaw<double>& law, const T* params)
+  // table: the law's ring integrals tabulated (exact variant only; see ring_table_for). With a
+  // free exponent n and autodiff T it must carry the n-slopes.
+  ModelEvaluator(ModelKind kind, const model::PressureLaw<double>& law, const T* params,
+                 std::shared_ptr<const model::RingIntegralTable> table = nullptr)
       : kind_(kind) {
     if (kind_ == ModelKind::Exact) {
-      exact_ = std::make_unique<model::ExactModel<T>>(exact_params(params), promote(law, params));
+      exact_ = std::make_unique<model::ExactModel<T>>(exact_params(params), promote(law, params),
+                                                      std::move(table));
     } else {
       shape_ = model::approximant_shape(model::law_moments(law));
       approx_ = {params[kF],

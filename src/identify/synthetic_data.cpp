@@ -47,7 +47,9 @@ Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
     throw std::invalid_argument("the eps range must satisfy 0 < eps_min <= eps_max");
   if (design.loads.empty() || design.slip_angles.empty())
     throw std::invalid_argument("the design needs at least one load and one slip angle");
-  const ModelEvaluator<double> model(kind, law, params.data());
+  const ModelEvaluator<double> model(
+      kind, law, params.data(),
+      design.rows >= kRingTableMinRows ? ring_table_for(kind, law, params[kN], false) : nullptr);
   NormalStream normal(seed);
   Dataset d;
   d.source = "generated";

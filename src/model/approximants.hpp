@@ -22,6 +22,7 @@
 // v (the exact parity), where the published T_perp (defined for v_x >= 0 only) would be odd.
 #pragma once
 
+#include <array>
 #include <cmath>
 
 #include "model/coefficients.hpp"
@@ -67,14 +68,6 @@ ApproximantShape<T> approximant_shape(const LawMoments<T>& mo) {
   return s;
 }
 
-// eps/sqrt(eps^2 + c), written to stay finite for eps = 0 and eps = inf.
-template <typename T>
-T saturating(double eps, const T& c) {
-  if (eps <= 1.0) return eps * inv_sqrt(T(eps * eps) + c);
-  const double q = 1.0 / eps;
-  return inv_sqrt(T(1) + c * (q * q));
-}
-
 // The shape constants are plain doubles: the pressure law of a closed-form fit is fixed, so
 // they never carry derivatives (and autodiff need not pay for them).
 template <typename T>
@@ -90,24 +83,26 @@ Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantPara
   }
   const double eps = g.eps, ca = g.cos_alpha, sa = g.sin_alpha, s = g.spin_sign;
   const bool small = eps <= 1.0;
-  // For large eps the forms are divided through by eps; q = 1/eps stays a plain double (0 for
-  // pure sliding), because sqrt of a constant-zero Jet has a NaN derivative.
-  const double e2 = eps * eps, q = small ? 0.0 : 1.0 / eps, inv2 = q * q;
-
-  const T t = saturating(eps, p.a);
-  T p_hat;
-  if (form == ApproximantForm::Seed) {
-    p_hat = small ? eps * inv_sqrt((T(1) + p.b * e2) * (T(e2) + p.a))
-                  : q * inv_sqrt((T(inv2) + p.b) * (T(1) + p.a * inv2));
-  } else {
-    p_hat = small ? p.p0 * inv_sqrt(T(1) + p.b * e2) : (p.p0 * q) * inv_sqrt(T(inv2) + p.b);
-  }
+  // Every stand-in is a factor times 1/sqrt(y). For large eps the forms are divided through by
+  // eps; q = 1/eps stays a plain double (0 for pure sliding), because sqrt of a constant-zero
+  // Jet has a NaN derivative.
+  const double e2 = eps * eps, q = small ? 0.0 : g.inv_eps, inv2 = q * q;
+  // t = eps/sqrt(eps^2 + a)
+  const T y_t = small ? T(e2) + p.a : T(1) + p.a * inv2;
+  const double f_t = small ? eps : 1.0;
+  // p_hat: seed eps/sqrt((1 + b eps^2)(eps^2 + a)); corrected p0/sqrt(1 + b~ eps^2)
+  const bool seed = form == ApproximantForm::Seed;
+  const T y_p = seed ? (small ? (T(1) + p.b * e2) * y_t : (T(inv2) + p.b) * y_t)
+                     : (small ? T(1) + p.b * e2 : T(inv2) + p.b);
+  const T f_p = seed ? T(small ? eps : q) : p.p0 * (small ? 1.0 : q);
   const T F0 = p.f * k.N;
   const T M0 = (T(1) + p.kappa) * (0.5 * shape.mu_M * k.R) * F0;
   if (sa == 0.0) {
     // Slip along the x axis (ca = +-1) or pure spin: d11 = 1, d12 = 0, d22 = kappa, m(alpha) = m
-    // and every tilt stand-in but p_hat drops out; the common case of test-rig data, and half
-    // the arithmetic of the general case below.
+    // and every tilt stand-in but p_hat drops out; the common case of test-rig data, and the
+    // seed's three published formulas.
+    const T t = f_t * inv_sqrt(y_t);
+    const T p_hat = f_p * inv_sqrt(y_p);
     const T g_aligned = small ? inv_sqrt(T(1) + p.m * e2) : q * inv_sqrt(T(inv2) + p.m);
     r.T_x = F0 * (ca * t);
     r.T_y = F0 * p.kappa * p.h * (s * p_hat);
@@ -117,17 +112,27 @@ Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantPara
   const T d11 = T(ca * ca) + p.kappa * (sa * sa);
   const T d22 = T(sa * sa) + p.kappa * (ca * ca);
   const T d12 = (p.kappa - T(1)) * (sa * ca);
-  const T m_alpha = p.m * (p.kappa * p.kappa) / (d22 * d22);
-  const T g_hat = small ? inv_sqrt(T(1) + m_alpha * e2) : q * inv_sqrt(T(inv2) + m_alpha);
-  // The tilt stand-ins act only off the principal axis (sin(a) != 0; d12 = 0 otherwise).
-  // s_hat = p0/(1 + b_S eps^2)^(3/2); u_hat likewise: both decay, written for eps = inf too.
-  const double sw = small ? 1.0 / (1.0 + shape.b_S * e2) : inv2 / (inv2 + shape.b_S);
-  const double s_hat = shape.p0_law * sw * std::sqrt(sw);
-  // eps (1 + c eps^2)^(-3/2) = eps^-2 (eps^-2 + c)^(-3/2) for large eps.
-  const double uw = small ? 1.0 / (1.0 + shape.c_U * e2) : 1.0 / (inv2 + shape.c_U);
-  const double u_hat = shape.u_scale * (small ? eps : inv2) * uw * std::sqrt(uw);
-  const double x_hat = saturating(eps, shape.c_X);
-  const double v_hat = saturating(eps, shape.c_V);
+  // g_hat = 1/sqrt(1 + m(alpha) eps^2), m(alpha) = m kappa^2/d22^2, as d22/sqrt(d22^2 + ...).
+  const T mk2 = p.m * (p.kappa * p.kappa);
+  const T y_g = small ? d22 * d22 + mk2 * e2 : d22 * d22 * inv2 + mk2;
+  const T f_g = small ? d22 : q * d22;
+  // The tilt stand-ins act only off the principal axis (sin(a) != 0; d12 = 0 otherwise):
+  // s_hat = p0 (1 + b_S eps^2)^(-3/2), u_hat = (m2/(4 m3)) eps (1 + c_U eps^2)^(-3/2),
+  // x_hat = eps/sqrt(eps^2 + c_X), v_hat = eps/sqrt(eps^2 + c_V); for large eps in q.
+  const std::array<double, 4> y_tilt =
+      small ? std::array<double, 4>{1.0 + shape.b_S * e2, 1.0 + shape.c_U * e2, e2 + shape.c_X,
+                                    e2 + shape.c_V}
+            : std::array<double, 4>{inv2 + shape.b_S, inv2 + shape.c_U, 1.0 + shape.c_X * inv2,
+                                    1.0 + shape.c_V * inv2};
+  const T t = f_t * inv_sqrt(y_t);
+  const T p_hat = f_p * inv_sqrt(y_p);
+  const T g_hat = f_g * inv_sqrt(y_g);
+  const std::array<double, 4> r_tilt = inv_sqrt_each(y_tilt);
+  const double qs = small ? 1.0 : q * r_tilt[0];
+  const double s_hat = shape.p0_law * (small ? r_tilt[0] * r_tilt[0] * r_tilt[0] : qs * qs * qs);
+  const double u_hat = shape.u_scale * (small ? eps : inv2) * (r_tilt[1] * r_tilt[1] * r_tilt[1]);
+  const double x_hat = (small ? eps : 1.0) * r_tilt[2];
+  const double v_hat = (small ? eps : 1.0) * r_tilt[3];
 
   const T base = t + p.h * (s * sa) * s_hat;
   const T tilt = p.h * (s * ca) * p_hat;

@@ -4,12 +4,16 @@
 #pragma once
 
 #include <cmath>
+#include <memory>
+#include <stdexcept>
 #include <type_traits>
 
 #include "model/closed_forms.hpp"
 #include "model/kinematics.hpp"
 #include "model/pressure_law.hpp"
+#include "model/ring_integral_table.hpp"
 #include "model/ring_integrals.hpp"
+#include "model/scalar_ops.hpp"
 
 namespace frictionid::model {
 
@@ -44,8 +48,16 @@ Resultants<T> combine_ring_integrals(const FrictionParams<T>& p, const SlipGeome
 template <typename T>
 class ExactModel {
  public:
-  ExactModel(const FrictionParams<T>& params, PressureLaw<T> law)
-      : p_(params), law_(std::move(law)), moments_(law_moments(law_)) {}
+  // With a table (ring_integral_table.hpp) of the same law the ring integrals come from it
+  // instead of the radial quadrature: ~50 ns instead of ~4 us per point, and more accurate.
+  ExactModel(const FrictionParams<T>& params, PressureLaw<T> law,
+             std::shared_ptr<const RingIntegralTable> table = nullptr)
+      : p_(params), law_(std::move(law)), moments_(law_moments(law_)), table_(std::move(table)) {
+    if (table_ && (table_->law().kind != law_.kind ||
+                   (law_.kind == PressureKind::Power && table_->law().n != value_of(law_.n)) ||
+                   (law_.kind == PressureKind::Table && table_->law().table != law_.table)))
+      throw std::invalid_argument("ring integral table built for another pressure law");
+  }
 
   const LawMoments<T>& moments() const { return moments_; }
 
@@ -65,7 +77,8 @@ class ExactModel {
       const AlignedIntegrals a = uniform_aligned_integrals(g.eps);
       r = combine_ring_integrals(p_, g, a.P, 0.0, a.J, 0.0, 0.0, 0.0, force_scale, torque_scale);
     } else {
-      const RingIntegrals<T> in = ring_integrals(law_, moments_, g.eps);
+      const RingIntegrals<T> in =
+          table_ ? table_integrals(g.eps) : ring_integrals(law_, moments_, g.eps);
       r = combine_ring_integrals(p_, g, in.P, in.Q, in.S, in.U, in.V, in.X, force_scale,
                                  torque_scale);
     }
@@ -92,9 +105,25 @@ class ExactModel {
     return false;
   }
 
+  RingIntegrals<T> table_integrals(double eps) const {
+    if (!(eps < HUGE_VAL)) return sliding_ring_integrals(moments_);
+    double v[6], s[6];
+    if (law_.kind == PressureKind::Power && table_->has_n_slope()) {
+      table_->evaluate(eps, v, s);
+      // First order in n about the table's exponent: the value is the table's, the derivative
+      // part (zero for a double) follows n.
+      const T dn = law_.n - T(table_->law().n);
+      return {T(v[0]) + dn * s[0], T(v[1]) + dn * s[1], T(v[2]) + dn * s[2],
+              T(v[3]) + dn * s[3], T(v[4]) + dn * s[4], T(v[5]) + dn * s[5]};
+    }
+    table_->evaluate(eps, v);
+    return {T(v[0]), T(v[1]), T(v[2]), T(v[3]), T(v[4]), T(v[5])};
+  }
+
   FrictionParams<T> p_;
   PressureLaw<T> law_;
   LawMoments<T> moments_;
+  std::shared_ptr<const RingIntegralTable> table_;
 };
 
 // Ring quadrature only, no fast paths: the reference the fast paths are tested against.

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "model/pressure_law.hpp"
 #include "model/ring_kernels.hpp"
@@ -36,19 +37,13 @@ void accumulate(RingIntegrals<T>& acc, const RingKernels<double>& k, double w, d
 constexpr double kMinM1 = 1e-300;  // keeps K finite on the ring k = 1 itself
 }  // namespace detail
 
-// eps in [0, inf]. moments are needed only for eps = inf (pure sliding), where the kernels'
-// limits make every integral a moment.
-template <typename T>
-RingIntegrals<T> ring_integrals(const PressureLaw<T>& law, const LawMoments<T>& moments,
-                                double eps) {
+// The six integrals for any radial weight w(rho, 1 - rho) (the pressure law, or its derivative
+// with respect to a shape parameter) on a given rule; eps in [0, inf). Kernels are evaluated
+// once per node in double, only the weight carries the scalar type.
+template <typename T, typename Weight>
+RingIntegrals<T> weighted_ring_integrals(const Weight& weight, double eps,
+                                         const std::vector<QuadratureNode>& rule) {
   RingIntegrals<T> acc{T(0), T(0), T(0), T(0), T(0), T(0)};
-  if (!(eps < HUGE_VAL)) {
-    acc.P = T(2 * M_PI) * moments[1];
-    acc.V = T(M_PI) * moments[3];
-    acc.X = acc.V;
-    return acc;
-  }
-  const auto& rule = radial_rule();
   // Inner piece rho in [0, L], L = min(eps, 1): k = eps/rho >= 1, kernels in q = rho/eps.
   if (eps > 0.0) {
     const double len = std::min(eps, 1.0);
@@ -59,7 +54,7 @@ RingIntegrals<T> ring_integrals(const PressureLaw<T>& law, const LawMoments<T>& 
       const double m1 = std::max(one_minus_q * (1.0 + q), detail::kMinM1);
       const RingKernels<double> k = ring_kernels_outside(q, q * q, m1);
       detail::accumulate(acc, k, node.weight * len, rho,
-                         law(rho, (1.0 - len) + len * node.from_right));
+                         weight(rho, (1.0 - len) + len * node.from_right));
     }
   }
   // Outer piece rho in [eps, 1]: k = eps/rho <= 1.
@@ -71,10 +66,28 @@ RingIntegrals<T> ring_integrals(const PressureLaw<T>& law, const LawMoments<T>& 
       const double above = len * node.from_left;  // rho - eps
       const double m1 = std::max(above * (rho + eps) / (rho * rho), detail::kMinM1);
       const RingKernels<double> kern = ring_kernels_inside(k, k * k, m1);
-      detail::accumulate(acc, kern, node.weight * len, rho, law(rho, len * node.from_right));
+      detail::accumulate(acc, kern, node.weight * len, rho, weight(rho, len * node.from_right));
     }
   }
   return acc;
+}
+
+// Pure sliding (eps = inf): every kernel tends to its limit and each integral is a moment.
+template <typename T>
+RingIntegrals<T> sliding_ring_integrals(const LawMoments<T>& moments) {
+  RingIntegrals<T> acc{T(0), T(0), T(0), T(0), T(0), T(0)};
+  acc.P = T(2 * M_PI) * moments[1];
+  acc.V = T(M_PI) * moments[3];
+  acc.X = acc.V;
+  return acc;
+}
+
+// eps in [0, inf]. moments are needed only for eps = inf (pure sliding).
+template <typename T>
+RingIntegrals<T> ring_integrals(const PressureLaw<T>& law, const LawMoments<T>& moments,
+                                double eps) {
+  if (!(eps < HUGE_VAL)) return sliding_ring_integrals(moments);
+  return weighted_ring_integrals<T>(law, eps, radial_rule());
 }
 
 }  // namespace frictionid::model
