@@ -20,6 +20,11 @@ int run_coefficients(const CoefficientsOptions& o) {
   const auto law = parse_pressure_law(o.pressure);
   const auto mo = model::law_moments(law);
   const auto c = model::coefficients(mo, o.kappa, o.alpha);
+  for (double v : {c.a, c.b, c.m, c.b_tilde, c.p0, c.mu_M, c.rho_roll})
+    if (!std::isfinite(v))
+      throw InputError("--kappa " + std::to_string(o.kappa) +
+                       " with this pressure law makes m = ((1+kappa) m2/(d22 m3))^2 overflow; "
+                       "use kappa >= 1e-150");
   const auto ok = model::check_consistency(c, o.kappa, o.alpha);
 
   nlohmann::ordered_json j;

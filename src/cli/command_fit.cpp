@@ -1,6 +1,7 @@
 // frictionid fit: identify a model's parameters from a dataset and write a report.
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
@@ -24,7 +25,10 @@ int run_fit(const FitOptions& o) {
   try {
     r = Fitter(s).fit(data, interrupted);
   } catch (const FitError& e) {
-    std::fprintf(stderr, "frictionid: fit failed: %s; no report written\n", e.what());
+    std::error_code ec;
+    const bool stale = std::filesystem::exists(std::filesystem::path(o.report) / "report.json", ec);
+    std::fprintf(stderr, "frictionid: fit failed: %s; no report written%s\n", e.what(),
+                 stale ? (" (" + o.report + "/report.json is from an earlier run)").c_str() : "");
     return interrupted->load() ? kExitInterrupted : kExitFitFailed;
   } catch (const std::invalid_argument& e) {
     throw InputError(o.data, 0, 0, e.what());

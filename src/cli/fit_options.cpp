@@ -90,6 +90,11 @@ FitSettings fit_settings_from_options(const FitOptions& o, const std::string& mo
       s.params[i].fixed = true;
       s.params[i].initial = v;
     }
+  // The exact model fits the exponent of a power law: the report names the law without the
+  // number given on the command line, which was only a shape to start from.
+  if (s.model == ModelKind::Exact && s.law.kind == model::PressureKind::Power &&
+      !s.params[kN].fixed)
+    s.law_label = "power:n (n fitted)";
   for (int i : used)
     if (s.params[i].fixed && s.params[i].log_scale && !(s.params[i].initial > 0.0))
       throw InputError(std::string("--fix: ") + param_names()[i] + " must be > 0");

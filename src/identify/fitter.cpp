@@ -200,6 +200,10 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
                                                 s.seed, std::max(1, s.starts), cancel);
     res.global.algorithm = global_algorithm_label(s.global_algorithm);
     res.global.evaluations = g.evaluations;
+    if (!g.failure.empty())
+      res.warnings.push_back("the global stage failed after " + std::to_string(g.evaluations) +
+                             " evaluations (" + g.failure + "); the local fits started from " +
+                             (g.starts.empty() ? "the initial values" : "its best points so far"));
     for (const auto& z : g.starts) {
       Params x = initial;
       for (std::size_t j = 0; j < p.free.size(); ++j)

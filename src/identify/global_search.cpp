@@ -16,6 +16,7 @@ struct Archive {
   std::vector<std::vector<double>> points;
   std::vector<double> values;
   nlopt::opt* opt = nullptr;
+  std::size_t budget = 0;  // NLopt's maxeval lets CRS2 finish a few trial points past it
 };
 
 double nlopt_objective(unsigned n, const double* x, double* grad, void* data) {
@@ -26,6 +27,7 @@ double nlopt_objective(unsigned n, const double* x, double* grad, void* data) {
   if (!std::isfinite(f)) f = std::numeric_limits<double>::max();
   a->points.emplace_back(x, x + n);
   a->values.push_back(f);
+  if (a->opt && a->values.size() >= a->budget) a->opt->force_stop();
   return f;
 }
 
@@ -56,7 +58,8 @@ GlobalSearchOutcome global_search(const GlobalSearchProblem& problem, const std:
                                   long max_evaluations, unsigned long long seed, int starts,
                                   const std::atomic<bool>* cancel) {
   const unsigned dim = static_cast<unsigned>(problem.lower.size());
-  Archive archive{&problem, cancel, {}, {}, nullptr};
+  Archive archive{&problem, cancel, {}, {}, nullptr,
+                  static_cast<std::size_t>(std::max(max_evaluations, 1L))};
   GlobalSearchOutcome out;
   out.algorithm = algorithm;
   if (algorithm == "random") {
@@ -87,6 +90,9 @@ GlobalSearchOutcome global_search(const GlobalSearchProblem& problem, const std:
     } catch (const nlopt::forced_stop&) {
     } catch (const nlopt::roundoff_limited&) {
       // The archive still holds everything evaluated; the local stage takes over from there.
+    } catch (const std::exception& e) {
+      // NLopt gave up (bad input to it, out of memory, ...): keep what it evaluated and say so.
+      out.failure = std::string("NLopt: ") + e.what();
     }
   }
   out.evaluations = static_cast<long>(archive.values.size());

@@ -19,6 +19,7 @@ struct GlobalSearchOutcome {
   std::vector<double> start_values;
   long evaluations = 0;
   std::string algorithm;
+  std::string failure;  // why the algorithm stopped early, if it failed; empty otherwise
 };
 
 // Algorithms: "crs2" (NLopt GN_CRS2_LM, the default), "isres", "direct", "esch", "random".

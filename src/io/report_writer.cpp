@@ -29,7 +29,7 @@ using ojson = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
 // More rows than this are thinned to every k-th row: SVG size and gnuplot time grow per point.
-constexpr std::size_t kMaxPlotRows = 20000;
+constexpr std::size_t kMaxPlotRows = 4000;  // ~4000 dots already fill an 800x500 plot
 
 // JSON has no NaN/Inf. nlohmann would print null anyway; being explicit keeps the rule visible.
 ojson number(double x) {
@@ -495,6 +495,14 @@ std::vector<std::string> write_report(const std::string& dir, const FitResult& r
   write_file_atomically((out_dir / "report.md").string(), report_markdown(r, plots));
   written.push_back((out_dir / "report.md").string());
   for (const auto& p : plots) written.push_back((out_dir / p).string());
+  // A plot of an earlier fit into the same directory (a channel not fitted this time) would
+  // sit next to this report as if it belonged to it.
+  for (Channel c : kAllChannels)
+    for (const char* kind : {"fit", "residuals"}) {
+      const std::string name = std::string(kind) + "_" + channel_name(c) + ".svg";
+      if (std::find(plots.begin(), plots.end(), name) == plots.end())
+        fs::remove(out_dir / name, ec);
+    }
   return written;
 }
 

@@ -66,7 +66,8 @@ TEST(Cli, BadPressureLawKappaOrExponentExitWithCodeTwoAndOneLine) {
   for (const char* args :
        {"coefficients --pressure foo", "coefficients --kappa 0", "coefficients --kappa -1",
         "coefficients --pressure power:-1", "coefficients --pressure power:abc",
-        "coefficients --kappa abc", "coefficients --pressure table:/nonexistent/file.csv"}) {
+        "coefficients --kappa abc", "coefficients --pressure table:/nonexistent/file.csv",
+        "coefficients --pressure power:0 --kappa 1e-300"}) {  // m would overflow
     const RunResult r = run(args);
     EXPECT_EQ(r.code, 2) << args << ": " << r.out;
     EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << args << ": " << r.out;

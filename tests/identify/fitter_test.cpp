@@ -197,6 +197,20 @@ TEST(Fitter, LargeDataRefinesTheBestSubsampleFitOnAllRows) {
     EXPECT_GE(matched_digits(p.value, truth[*param_index(p.name)]), 10.0) << p.name;
 }
 
+// A model that is not finite for every parameter value (here a row whose load is NaN, which the
+// CSV loader would reject) must end in FitError, never in a report with NaN in it.
+TEST(Fitter, ANonFiniteModelAtEveryStartIsAFitErrorNotAResult) {
+  const Law law = Law::hertz();
+  Dataset d =
+      generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{}, NoiseSpec{}, 5);
+  d.N[17] = std::nan("");
+  for (bool global : {true, false}) {
+    FitSettings s = settings_for(ModelKind::Seed, law);
+    s.global = global;
+    EXPECT_THROW(Fitter(s).fit(d), FitError) << "global stage " << global;
+  }
+}
+
 TEST(Fitter, RequestedChannelThatNoRowMeasuresIsReportedNotFitted) {
   const Law law = Law::hertz();
   Dataset d =

@@ -476,14 +476,14 @@ TEST(WriteReport, WithoutGnuplotWritesOnlyTheReports) {
 
 TEST(WriteReport, LargeDatasetIsSubsampledAndSaysSo) {
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot not on PATH";
-  const Dataset d = make_dataset(20001);
+  const Dataset d = make_dataset(4001);
   FitResult r = make_result(d);
   r.channels = {Channel::T_x};
   ScratchDir dir;
   write_report(dir.path().string(), r, d);
   const std::string svg = slurp(dir.path() / "fit_T_x.svg");
-  EXPECT_NE(svg.find("every 2nd of 20001 rows plotted"), std::string::npos);
-  EXPECT_NE(slurp(dir.path() / "residuals_T_x.svg").find("every 2nd of 20001 rows plotted"),
+  EXPECT_NE(svg.find("every 2nd of 4001 rows plotted"), std::string::npos);
+  EXPECT_NE(slurp(dir.path() / "residuals_T_x.svg").find("every 2nd of 4001 rows plotted"),
             std::string::npos);
 }
 
