@@ -185,6 +185,9 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
       gp.upper.push_back(to_search(s.params[i], s.params[i].upper));
     }
     long evaluations = 0;
+    // The search only ranks candidates: without a table the exact model may use a coarse rule.
+    LocalProblem pg = ps;
+    if (!pg.exact_table) pg.quadrature = &model::coarse_rule();
     gp.objective = [&](const double* z) {
       Params x = initial;
       for (std::size_t j = 0; j < p.free.size(); ++j)
@@ -194,7 +197,7 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
       if (s.progress && evaluations % 250 == 0)
         std::fprintf(stderr, "\rfrictionid: global search %ld/%ld evaluations   ", evaluations,
                      s.global_evaluations);
-      return 2.0 * problem_cost(ps, x);  // sum of squares
+      return 2.0 * problem_cost(pg, x);  // sum of squares
     };
     const GlobalSearchOutcome g = global_search(gp, s.global_algorithm, s.global_evaluations,
                                                 s.seed, std::max(1, s.starts), cancel);

@@ -58,8 +58,8 @@ GlobalSearchOutcome global_search(const GlobalSearchProblem& problem, const std:
                                   long max_evaluations, unsigned long long seed, int starts,
                                   const std::atomic<bool>* cancel) {
   const unsigned dim = static_cast<unsigned>(problem.lower.size());
-  Archive archive{&problem, cancel, {}, {}, nullptr,
-                  static_cast<std::size_t>(std::max(max_evaluations, 1L))};
+  Archive archive{&problem, cancel,  {},
+                  {},       nullptr, static_cast<std::size_t>(std::max(max_evaluations, 1L))};
   GlobalSearchOutcome out;
   out.algorithm = algorithm;
   if (algorithm == "random") {

@@ -43,7 +43,8 @@ std::size_t problem_chunks(const LocalProblem& p) {
 // Sum of squared residuals over all rows in plain doubles; +inf if any is not finite.
 double sum_of_squares(const LocalProblem& p, const ParamVector& x) {
   const FitSettings& s = *p.settings;
-  const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(p, x, false));
+  const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(p, x, false),
+                                     p.quadrature);
   const std::size_t chunks = problem_chunks(p);
   std::vector<double> part(chunks, 0.0);
   std::vector<char> good(chunks, 1);
@@ -114,7 +115,8 @@ struct JetPasses {
   static bool normal_equations(const LocalProblem& p, const ParamVector& x, NormalEquations& ne) {
     const FitSettings& s = *p.settings;
     const auto pj = seeded(p, x);
-    const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true));
+    const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true),
+                                    p.quadrature);
     const std::size_t chunks = problem_chunks(p);
     std::vector<Gram> gram(chunks);
     std::vector<double> sum_sq(chunks, 0.0);
@@ -145,7 +147,8 @@ struct JetPasses {
   static std::optional<JacobianFactor> factor(const LocalProblem& p, const ParamVector& x) {
     const FitSettings& s = *p.settings;
     const auto pj = seeded(p, x);
-    const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true));
+    const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true),
+                                    p.quadrature);
     const std::size_t chunks = problem_chunks(p);
     std::vector<Eigen::MatrixXd> rc(chunks);
     std::vector<double> sum_sq(chunks, 0.0);

@@ -28,6 +28,8 @@ struct LocalProblem {
   // Exact model with a fixed pressure law: its ring integrals tabulated once for the whole fit.
   // Without one, a free exponent n gets a table per pass when the rows make it worth it.
   std::shared_ptr<const model::RingIntegralTable> exact_table;
+  // The exact model's radial rule where no table is used (nullptr: its accurate default).
+  const std::vector<model::QuadratureNode>* quadrature = nullptr;
 };
 
 // The ring-integral table a pass at x uses (nullptr: radial quadrature or a closed form).

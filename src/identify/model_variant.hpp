@@ -108,12 +108,14 @@ class ModelEvaluator {
  public:
   // table: the law's ring integrals tabulated (exact variant only; see ring_table_for). With a
   // free exponent n and autodiff T it must carry the n-slopes.
+  // rule: the radial quadrature without a table (default the exact model's own).
   ModelEvaluator(ModelKind kind, const model::PressureLaw<double>& law, const T* params,
-                 std::shared_ptr<const model::RingIntegralTable> table = nullptr)
+                 std::shared_ptr<const model::RingIntegralTable> table = nullptr,
+                 const std::vector<model::QuadratureNode>* rule = nullptr)
       : kind_(kind) {
     if (kind_ == ModelKind::Exact) {
       exact_ = std::make_unique<model::ExactModel<T>>(exact_params(params), promote(law, params),
-                                                      std::move(table));
+                                                      std::move(table), rule);
     } else {
       shape_ = model::approximant_shape(model::law_moments(law));
       approx_ = {params[kF],

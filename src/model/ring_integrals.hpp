@@ -84,10 +84,10 @@ RingIntegrals<T> sliding_ring_integrals(const LawMoments<T>& moments) {
 
 // eps in [0, inf]. moments are needed only for eps = inf (pure sliding).
 template <typename T>
-RingIntegrals<T> ring_integrals(const PressureLaw<T>& law, const LawMoments<T>& moments,
-                                double eps) {
+RingIntegrals<T> ring_integrals(const PressureLaw<T>& law, const LawMoments<T>& moments, double eps,
+                                const std::vector<QuadratureNode>& rule = radial_rule()) {
   if (!(eps < HUGE_VAL)) return sliding_ring_integrals(moments);
-  return weighted_ring_integrals<T>(law, eps, radial_rule());
+  return weighted_ring_integrals<T>(law, eps, rule);
 }
 
 }  // namespace frictionid::model

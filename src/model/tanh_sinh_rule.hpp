@@ -41,6 +41,13 @@ inline const std::vector<QuadratureNode>& radial_rule() {
   return rule;
 }
 
+// A coarse rule for searches that only rank candidates (the global stage): step 1/4, 23 nodes,
+// ~6e-5 relative, 2.2x cheaper than radial_rule().
+inline const std::vector<QuadratureNode>& coarse_rule() {
+  static const std::vector<QuadratureNode> rule = make_tanh_sinh_rule(1.0 / 4.0, 1e-12);
+  return rule;
+}
+
 // A finer rule for one-off integrals (pressure-law moments, tables): ~1e-15.
 inline const std::vector<QuadratureNode>& fine_rule() {
   static const std::vector<QuadratureNode> rule = make_tanh_sinh_rule(1.0 / 16.0, 1e-18);

@@ -68,15 +68,13 @@ TEST(Fitter, NoiseFreeExactDataRecoversFrictionTiltAndPressureExponentToEightDig
 }
 
 // With 1 % noise the reported standard errors must be honest: every parameter within 4 of them.
-TEST(Fitter, OnePercentNoiseLeavesEveryParameterWithinFourStandardErrorsForTwentySeeds) {
-  const Law law = Law::hertz();
-  const auto truth = truth_params(law);
+void expect_within_four_standard_errors(ModelKind kind, const Law& law,
+                                        const std::array<double, kParamCount>& truth) {
   SyntheticDesign design;
   design.rows = 300;
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-    const Dataset d =
-        generate_dataset(ModelKind::Seed, law, truth, design, NoiseSpec{0.01, 0.0, false}, seed);
-    FitSettings s = settings_for(ModelKind::Seed, law);
+    const Dataset d = generate_dataset(kind, law, truth, design, NoiseSpec{0.01, 0.0, false}, seed);
+    FitSettings s = settings_for(kind, law);
     s.seed = seed;
     const FitResult r = Fitter(s).fit(d);
     for (const auto& p : r.parameters) {
@@ -85,6 +83,21 @@ TEST(Fitter, OnePercentNoiseLeavesEveryParameterWithinFourStandardErrorsForTwent
           << "seed " << seed << " " << p.name << " = " << p.value << " +- " << *p.std_error;
     }
   }
+}
+
+TEST(Fitter, OnePercentNoiseLeavesEveryParameterWithinFourStandardErrorsForTwentySeeds) {
+  expect_within_four_standard_errors(ModelKind::Seed, Law::hertz(), truth_params(Law::hertz()));
+}
+
+TEST(Fitter, CorrectedModelStandardErrorsAreHonestForTwentySeeds) {
+  expect_within_four_standard_errors(ModelKind::Corrected, Law::parabolic(),
+                                     truth_params(Law::parabolic()));
+}
+
+TEST(Fitter, ExactModelStandardErrorsAreHonestForTwentySeeds) {
+  const Law law = Law::hertz();
+  expect_within_four_standard_errors(ModelKind::Exact, law,
+                                     default_parameters(law, 0.85, 1.3, 0.12));
 }
 
 TEST(Fitter, DataWithoutLateralForceOrRollingTorqueNamesHAndBAsUndetermined) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "identify/fit_result.hpp"
 #include "identify/fitter.hpp"
 #include "identify/synthetic_data.hpp"
 
@@ -48,6 +49,49 @@ TEST(ModelComparison, ClosedFormsLeaveASystematicResidualOnExactDataAndAicPrefer
   const double r = 15 * M_PI * (1 + kappa) / (32 * kappa);
   EXPECT_NEAR(c.implied_by_exact.at("b"), 25.0, 1e-12);
   EXPECT_NEAR(c.implied_by_exact.at("m"), r * r, 1e-10);
+}
+
+// Physics.md §3: with the coefficients the pressure law implies, the seed's T_par differs from
+// the exact one only in shape, t_seed = eps/sqrt(eps^2 + a) against the Hertz closed form of
+// §2, t = 3/(16 eps) [(4 eps^2 - eps^4) A + (eps^2 + 2) W]. Fitting f alone to exact T_x data
+// must leave exactly that ratio as the residual: measured/fitted = t/(c t_seed) at every row,
+// with one constant c = f_fit/f_true, a dip of ~14 % near eps = 0.9 against both ends.
+TEST(ModelComparison, SeedFitToExactDataLeavesThePredictedShapeResidual) {
+  const Law law = Law::hertz();
+  const auto truth = default_parameters(law, 0.9, 1.15, 0.08);
+  SyntheticDesign design;
+  design.rows = 400;
+  design.eps_min = 1e-3;
+  design.eps_max = 1e3;
+  const Dataset d = generate_dataset(ModelKind::Exact, law, truth, design, NoiseSpec{}, 3);
+  FitSettings s = settings_for(ModelKind::Seed, law);
+  s.channels = {Channel::T_x};
+  const double a = std::pow(8.0 / (3.0 * M_PI), 2);  // (2 m1/m0)^2 for Hertz
+  for (int i : {kKappa, kH, kA, kB, kM}) s.params[i].fixed = true;
+  s.params[kA].initial = a;
+  const FitResult r = Fitter(s).fit(d);
+  const double c = r.parameters[0].value / truth[kF];
+  double dip = 1.0, dip_eps = 0.0, low_end = 0.0, high_end = 0.0;
+  for (std::size_t i = 0; i < d.rows(); ++i) {
+    const double eps = r.eps[i];
+    const double A = std::asin(std::min(1.0, 1.0 / eps)),
+                 W = std::sqrt(std::max(0.0, eps * eps - 1));
+    const double t_exact =
+        3.0 / (16.0 * eps) * ((4 * eps * eps - std::pow(eps, 4)) * A + (eps * eps + 2) * W);
+    const double t_seed = eps / std::sqrt(eps * eps + a);
+    const double predicted = t_exact / (c * t_seed);  // measured / fitted
+    const double got = d.value[0][i] / r.fitted[0][i];
+    ASSERT_NEAR(got, predicted, 1e-9) << "eps " << eps;
+    const double shape = c * t_seed / t_exact;  // the approximant against the exact shape
+    if (shape < dip) dip = shape, dip_eps = eps;
+    if (eps < 2e-3) low_end = shape;
+    if (eps > 5e2) high_end = shape;
+  }
+  EXPECT_NEAR(low_end / c, 1.0, 1e-3);  // both ends: slopes matched (a from the law)
+  EXPECT_NEAR(high_end / c, 1.0, 1e-3);
+  EXPECT_NEAR(dip / c, 1.0 - 0.139, 0.005);  // tens of percent in between (physics.md §3)
+  EXPECT_GT(dip_eps, 0.6);
+  EXPECT_LT(dip_eps, 1.3);
 }
 
 // Slip in several directions: the force direction alone (T_x, T_y, no M_z) fixes kappa.
