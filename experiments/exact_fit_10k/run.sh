@@ -26,9 +26,9 @@ load_before=$(cut -d" " -f1-3 /proc/loadavg)
 
 # name | pressure the data come from | fit options
 setups=(
-  "hertz, fixed law|hertz|--pressure hertz"
-  "power:1.5, exponent n fitted|power:1.5|--pressure power:1"
-  "power:1.5, n fixed at 1.5|power:1.5|--pressure power:1.5 --fix n=1.5"
+  "hertz (fixed law)|hertz|--pressure hertz"
+  "power:1.5 (exponent n fitted from power:1)|power:1.5|--pressure power:1"
+  "power:1.5 (n fixed at 1.5)|power:1.5|--pressure power:1.5 --fix n=1.5"
 )
 TIMEFORMAT="%3R"
 echo "setup,rep,wall_s,read_s,global_s,local_s,statistics_s,report_s,iterations,f,kappa,h,n" \
