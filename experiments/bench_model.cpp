@@ -67,22 +67,17 @@ void BM_ExactPower17General(benchmark::State& state) {
 BENCHMARK(BM_ExactPower17General);
 
 // The exact model with its ring integrals tabulated (what fits, generate and eval --input use):
-// any slip angle, power:1.7; the table is built once outside the timed loop.
-void BM_ExactPower17GeneralTabulated(benchmark::State& state) {
-  const auto law = model::PressureLaw<double>::power(1.7);
+// any slip angle; the table is built once outside the timed loop.
+void exact_tabulated(benchmark::State& state, const model::PressureLaw<double>& law,
+                     unsigned seed) {
   const model::ExactModel<double> m({0.6, 1.3, 0.2}, law,
                                     std::make_shared<const model::RingIntegralTable>(law));
-  run(state, m, points(0.01, 100.0, false, 3));
+  run(state, m, points(0.01, 100.0, false, seed));
 }
-BENCHMARK(BM_ExactPower17GeneralTabulated);
-
-void BM_ExactHertzObliqueTabulated(benchmark::State& state) {
-  const auto law = model::PressureLaw<double>::hertz();
-  const model::ExactModel<double> m({0.6, 1.3, 0.2}, law,
-                                    std::make_shared<const model::RingIntegralTable>(law));
-  run(state, m, points(0.01, 100.0, false, 2));
-}
-BENCHMARK(BM_ExactHertzObliqueTabulated);
+BENCHMARK_CAPTURE(exact_tabulated, BM_ExactPower17GeneralTabulated,
+                  model::PressureLaw<double>::power(1.7), 3);
+BENCHMARK_CAPTURE(exact_tabulated, BM_ExactHertzObliqueTabulated,
+                  model::PressureLaw<double>::hertz(), 2);
 
 // Building that table (once per fit with a fixed pressure law).
 void BM_RingIntegralTableBuildPower17(benchmark::State& state) {
@@ -138,8 +133,10 @@ void BM_ExactPower17JacobianRow(benchmark::State& state) {
 BENCHMARK(BM_ExactPower17JacobianRow);
 
 // The same row as a fit of the exact model computes it: Jets only as wide as the free
-// parameters (f, kappa, h, n for a power law), as identify/fitter.cpp builds them.
-void BM_ExactPower17FitJacobianRow(benchmark::State& state) {
+// parameters (f, kappa, h, n for a power law), as identify/local_stage.cpp builds them; by the
+// radial quadrature, or from the tabulated integrals with n-slopes (a fit's passes on large
+// data).
+void exact_fit_jacobian_row(benchmark::State& state, bool tabulated) {
   using Jet4 = ceres::Jet<double, 4>;
   const auto law = model::PressureLaw<double>::power(1.7);
   const auto p = default_parameters(law, 0.6, 1.3, 0.2);
@@ -147,25 +144,13 @@ void BM_ExactPower17FitJacobianRow(benchmark::State& state) {
   for (int i = 0; i < kParamCount; ++i) pj[i] = Jet4(p[i]);
   int k = 0;
   for (int i : {kF, kKappa, kH, kN}) pj[i] = Jet4(p[i], k++);
-  const ModelEvaluator<Jet4> ev(ModelKind::Exact, law, pj.data());
+  const ModelEvaluator<Jet4> ev(
+      ModelKind::Exact, law, pj.data(),
+      tabulated ? ring_table_for(ModelKind::Exact, law, p[kN], true) : nullptr);
   run(state, ev, points(0.01, 100.0, false, 5));
 }
-BENCHMARK(BM_ExactPower17FitJacobianRow);
-
-// The same row from the tabulated integrals with n-slopes (a fit's passes on large data).
-void BM_ExactPower17FitJacobianRowTabulated(benchmark::State& state) {
-  using Jet4 = ceres::Jet<double, 4>;
-  const auto law = model::PressureLaw<double>::power(1.7);
-  const auto p = default_parameters(law, 0.6, 1.3, 0.2);
-  std::array<Jet4, kParamCount> pj;
-  for (int i = 0; i < kParamCount; ++i) pj[i] = Jet4(p[i]);
-  int k = 0;
-  for (int i : {kF, kKappa, kH, kN}) pj[i] = Jet4(p[i], k++);
-  const ModelEvaluator<Jet4> ev(ModelKind::Exact, law, pj.data(),
-                                ring_table_for(ModelKind::Exact, law, p[kN], true));
-  run(state, ev, points(0.01, 100.0, false, 5));
-}
-BENCHMARK(BM_ExactPower17FitJacobianRowTabulated);
+BENCHMARK_CAPTURE(exact_fit_jacobian_row, BM_ExactPower17FitJacobianRow, false);
+BENCHMARK_CAPTURE(exact_fit_jacobian_row, BM_ExactPower17FitJacobianRowTabulated, true);
 
 // The brute-force 2-D integral of the local law (tests/model/reference_integrator.hpp: adaptive
 // Gauss-Kronrod in rho and theta, split at the instantaneous centre) at the accuracy the exact

@@ -15,12 +15,7 @@
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-root="$(cd "$here/../.." && pwd)"
-bin="${FRICTIONID:-$root/build/frictionid}"
-[[ "$bin" = /* ]] || bin="$PWD/$bin"
-[[ -x "$bin" ]] || { echo "run.sh: no executable frictionid at $bin (set FRICTIONID)" >&2; exit 1; }
-py=/usr/bin/python3
-"$root/scripts/install-deps" --experiments >&2  # Debian numpy/scipy and gnuplot, if missing
+source "$here/../common.sh"
 command -v gnuplot > /dev/null || { echo "run.sh: gnuplot not found" >&2; exit 1; }
 
 # The experiment's knobs (the README's table is for these values).

@@ -10,10 +10,7 @@
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-root="$(cd "$here/../.." && pwd)"
-bin="${FRICTIONID:-$root/build/frictionid}"
-[[ "$bin" = /* ]] || bin="$PWD/$bin"
-[[ -x "$bin" ]] || { echo "run.sh: no executable frictionid at $bin (set FRICTIONID)" >&2; exit 1; }
+source "$here/../common.sh"
 REPS=${REPS:-5}
 ROWS=${ROWS:-10000}
 out="$here/out"
@@ -44,7 +41,7 @@ for s in "${setups[@]}"; do
     wall=$( { time "$bin" fit "$data" --model exact $opts --report "$out/report" \
                 > "$out/stdout" 2> /dev/null; } 2>&1 )
     times=$(sed -n 's/^time: reading \([0-9.]*\) s, global stage \([0-9.]*\) s, local fits \([0-9.]*\) s, statistics and predictions \([0-9.]*\) s, report \([0-9.]*\) s$/\1,\2,\3,\4,\5/p' "$out/stdout")
-    params=$(/usr/bin/python3 -c '
+    params=$("$py" -c '
 import json, sys
 r = json.load(open(sys.argv[1]))
 p = r["parameters"]
@@ -57,7 +54,7 @@ print(",".join([str(r["solver"]["iterations"])] +
 done
 load_after=$(cut -d" " -f1-3 /proc/loadavg)
 
-/usr/bin/python3 - "$out/runs.csv" "$here/results.md" "$binary_id" "$ROWS" "$load_before" \
+"$py" - "$out/runs.csv" "$here/results.md" "$binary_id" "$ROWS" "$load_before" \
   "$load_after" "$(getconf _NPROCESSORS_ONLN)" <<'PY'
 import csv, statistics, sys
 runs, out, binary_id, rows, before, after, cpus = sys.argv[1:8]

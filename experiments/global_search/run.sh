@@ -12,12 +12,7 @@
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-root="$(cd "$here/../.." && pwd)"
-bin="${FRICTIONID:-$root/build/frictionid}"
-[[ "$bin" = /* ]] || bin="$PWD/$bin"           # a relative $FRICTIONID is relative to the caller
-[[ -x "$bin" ]] || { echo "run.sh: no executable frictionid at $bin (set FRICTIONID)" >&2; exit 1; }
-py=/usr/bin/python3
-"$root/scripts/install-deps" --experiments >&2  # Debian numpy/scipy and gnuplot, if missing
+source "$here/../common.sh"
 
 # The experiment's knobs (the README's table is for these values).
 T=30                               # number of random truths

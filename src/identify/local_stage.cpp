@@ -7,6 +7,7 @@
 // Gauss-Newton matrix and predicted decrease as with the m rows themselves (what
 // DENSE_NORMAL_CHOLESKY would form), but never stores an m x k Jacobian: memory stays O(k^2),
 // the work is one pass over the rows, and the bits do not depend on the thread count.
+
 // GCC's inliner runs out of budget inside the large Jet expressions of the models and leaves
 // Eigen's 6-element vector operations as calls, which then cost more than the arithmetic.
 #if defined(__GNUC__) && !defined(__clang__) && !defined(EIGEN_STRONG_INLINE)
@@ -112,29 +113,40 @@ struct JetPasses {
     return true;
   }
 
-  static bool normal_equations(const LocalProblem& p, const ParamVector& x, NormalEquations& ne) {
+  // One autodiff pass at x: reduce(c, b) turns chunk c's rows b into the chunk's result;
+  // sum_sq[c] gets its sum of squared residuals. False if any chunk was not finite.
+  template <typename Reduce>
+  static bool pass(const LocalProblem& p, const ParamVector& x, std::vector<double>& sum_sq,
+                   const Reduce& reduce) {
     const FitSettings& s = *p.settings;
     const auto pj = seeded(p, x);
     const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true),
                                     p.quadrature);
     const std::size_t chunks = problem_chunks(p);
-    std::vector<Gram> gram(chunks);
-    std::vector<double> sum_sq(chunks, 0.0);
+    sum_sq.assign(chunks, 0.0);
     std::vector<char> good(chunks, 1);
     for_each_chunk(chunks, p.threads, [&](std::size_t c) {
       thread_local Block b;
-      if (!fill(p, model, c, b, sum_sq[c])) {
+      if (fill(p, model, c, b, sum_sq[c]))
+        reduce(c, b);
+      else
         good[c] = 0;
-        return;
-      }
+    });
+    return std::all_of(good.begin(), good.end(), [](char g) { return g != 0; });
+  }
+
+  static bool normal_equations(const LocalProblem& p, const ParamVector& x, NormalEquations& ne) {
+    std::vector<Gram> gram(problem_chunks(p));
+    std::vector<double> sum_sq;
+    const bool ok = pass(p, x, sum_sq, [&](std::size_t c, const Block& b) {
       // Column dot products: 7 columns are too narrow for a blocked matrix product to pay.
       for (int a = 0; a <= N; ++a)
         for (int k = 0; k <= a; ++k) gram[c](a, k) = gram[c](k, a) = b.col(a).dot(b.col(k));
     });
+    if (!ok) return false;
     Gram total = Gram::Zero();
     ne.rtr = 0.0;
-    for (std::size_t c = 0; c < chunks; ++c) {
-      if (!good[c]) return false;
+    for (std::size_t c = 0; c < gram.size(); ++c) {
       total += gram[c];
       ne.rtr += sum_sq[c];
     }
@@ -145,27 +157,16 @@ struct JetPasses {
 
   // TSQR: each chunk's Jacobian to its triangular factor, the factors stacked in chunk order.
   static std::optional<JacobianFactor> factor(const LocalProblem& p, const ParamVector& x) {
-    const FitSettings& s = *p.settings;
-    const auto pj = seeded(p, x);
-    const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true),
-                                    p.quadrature);
-    const std::size_t chunks = problem_chunks(p);
-    std::vector<Eigen::MatrixXd> rc(chunks);
-    std::vector<double> sum_sq(chunks, 0.0);
-    std::vector<char> good(chunks, 1);
-    for_each_chunk(chunks, p.threads, [&](std::size_t c) {
-      thread_local Block b;
-      if (!fill(p, model, c, b, sum_sq[c])) {
-        good[c] = 0;
-        return;
-      }
+    std::vector<Eigen::MatrixXd> rc(problem_chunks(p));
+    std::vector<double> sum_sq;
+    const bool ok = pass(p, x, sum_sq, [&](std::size_t c, const Block& b) {
       rc[c] = triangular(b.template leftCols<N>());
     });
+    if (!ok) return std::nullopt;
     JacobianFactor out;
     Eigen::MatrixXd r = Eigen::MatrixXd::Zero(N, N), stacked(2 * N, N);
     double total = 0.0;
-    for (std::size_t c = 0; c < chunks; ++c) {
-      if (!good[c]) return std::nullopt;
+    for (std::size_t c = 0; c < rc.size(); ++c) {
       stacked << r, rc[c];
       r = triangular(stacked);
       total += sum_sq[c];
