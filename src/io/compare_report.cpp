@@ -50,7 +50,7 @@ std::vector<std::string> coefficient_notes(const ModelComparison& c) {
   if (c.implied_by_exact.empty()) return notes;
   for (const auto& f : c.fits) {
     if (f.model == "exact") continue;
-    for (const char* name : {"a", "b", "b_tilde", "m"}) {
+    for (const char* name : {"a", "b", "b_tilde", "m", "p0"}) {
       const ParameterEstimate* p = find_param(f, name);
       if (!p || p->fixed || !c.implied_by_exact.count(name)) continue;
       const double implied = c.implied_by_exact.at(name);
