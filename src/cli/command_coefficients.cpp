@@ -1,5 +1,6 @@
 // frictionid coefficients: the moments of a pressure law and the approximant coefficients they
 // imply (physics.md §3).
+#include <fmt/format.h>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -22,9 +23,8 @@ int run_coefficients(const CoefficientsOptions& o) {
   const auto c = model::coefficients(mo, o.kappa, o.alpha);
   for (double v : {c.a, c.b, c.m, c.b_tilde, c.p0, c.mu_M, c.rho_roll})
     if (!std::isfinite(v))
-      throw InputError("--kappa " + std::to_string(o.kappa) +
-                       " with this pressure law makes m = ((1+kappa) m2/(d22 m3))^2 overflow; "
-                       "use kappa >= 1e-150");
+      throw InputError("--kappa " + fmt::format("{:g}", o.kappa) +
+                       " is too small: m = ((1+kappa) m2/(d22 m3))^2 overflows");
   const auto ok = model::check_consistency(c, o.kappa, o.alpha);
 
   nlohmann::ordered_json j;
