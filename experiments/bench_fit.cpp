@@ -37,8 +37,7 @@ Setup make_setup(ModelKind kind, const model::PressureLaw<double>& law, int thre
   s.problem.threads = threads;
   s.x = truth;
   // As the fitter does: a fixed law's ring integrals tabulated once per fit.
-  const bool n_free = law.kind == model::PressureKind::Power;
-  if (kind == ModelKind::Exact && !n_free)
+  if (kind == ModelKind::Exact && !exponent_free(s.problem))
     s.problem.exact_table = ring_table_for(kind, law, truth[kN], false);
   return s;
 }

@@ -26,7 +26,7 @@ int eval_file(const EvalOptions& o, const ModelSetup& s) {
   const Dataset d = load_dataset_csv(o.input, parse_column_map(o.columns), false);
   const ModelEvaluator<double> eval(
       s.kind, s.law, s.params.data(),
-      d.rows() >= kRingTableMinRows ? ring_table_for(s.kind, s.law, s.params[kN], false) : nullptr);
+      ring_table_for_rows(s.kind, s.law, s.params[kN], false, d.rows()));
   std::string text = dataset_csv_text(d);
   const std::size_t header_end = text.find('\n');
   std::string header = text.substr(0, header_end);

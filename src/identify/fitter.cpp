@@ -144,9 +144,7 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
     if (s.params[i].fixed) initial[i] = s.params[i].initial;
 
   // The exact model with a fixed pressure law: tabulate its ring integrals once for every pass.
-  const bool n_free = s.law.kind == model::PressureKind::Power &&
-                      std::find(p.free.begin(), p.free.end(), kN) != p.free.end();
-  if (s.model == ModelKind::Exact && !n_free)
+  if (s.model == ModelKind::Exact && !exponent_free(lp))
     lp.exact_table = ring_table_for(s.model, s.law, initial[kN], false);
 
   // Global stage on a deterministic subsample (every k-th row).
@@ -222,7 +220,7 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
   if (cancel && cancel->load()) throw FitError("interrupted");
 
   // Local fits from every start; the best final cost wins (ties: the earlier start). A fit
-  // that Ceres ends in FAILURE (an evaluation or the linear solver failed) does not count.
+  // that Ceres ends in FAILURE has cost +inf (local_stage.hpp) and does not count.
   // On a subsampled dataset they run on the subsample, and only the best is refined on all
   // rows: the starts decide between basins, which the subsample resolves at a fraction of the
   // cost, and the final fit from a nearby point needs only a few passes over all rows.
@@ -231,8 +229,6 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
   for (std::size_t k = 0; k < starts.size(); ++k) {
     locals.push_back(local_fit(start_problem, starts[k], cancel, static_cast<int>(k + 1),
                                static_cast<int>(starts.size())));
-    if (locals.back().termination == "FAILURE")
-      locals.back().cost = std::numeric_limits<double>::infinity();
     if (cancel && cancel->load()) throw FitError("interrupted");
   }
   std::size_t best = 0;
@@ -254,7 +250,7 @@ FitResult Fitter::fit(const Dataset& data, const std::atomic<bool>* cancel) cons
     L = local_fit(lp, locals[best].x, cancel, static_cast<int>(starts.size()) + 1,
                   static_cast<int>(starts.size()) + 1);
     if (cancel && cancel->load()) throw FitError("interrupted");
-    if (L.termination == "FAILURE" || !std::isfinite(L.cost))
+    if (!std::isfinite(L.cost))
       throw FitError("the local fit on all rows failed (" + L.termination +
                      "): the model or its derivatives were not finite, or the solver failed");
   }

@@ -270,15 +270,18 @@ class Callback : public ceres::IterationCallback {
 
 }  // namespace
 
+bool exponent_free(const LocalProblem& p) {
+  return p.settings->law.kind == model::PressureKind::Power &&
+         std::find(p.free.begin(), p.free.end(), kN) != p.free.end();
+}
+
 std::shared_ptr<const model::RingIntegralTable> pass_table(const LocalProblem& p,
                                                            const ParamVector& x, bool n_slopes) {
   const FitSettings& s = *p.settings;
   if (s.model != ModelKind::Exact) return nullptr;
   if (p.exact_table) return p.exact_table;
-  const bool n_free = s.law.kind == model::PressureKind::Power &&
-                      std::find(p.free.begin(), p.free.end(), kN) != p.free.end();
-  if (!n_free || p.rows.end - p.rows.begin < kRingTableMinRows) return nullptr;
-  return ring_table_for(s.model, s.law, x[kN], n_slopes);
+  if (!exponent_free(p)) return nullptr;
+  return ring_table_for_rows(s.model, s.law, x[kN], n_slopes, p.rows.end - p.rows.begin);
 }
 
 double problem_cost(const LocalProblem& p, const ParamVector& x) {
@@ -348,7 +351,9 @@ LocalOutcome local_fit(const LocalProblem& p, const ParamVector& start,
   out.converged = summary.termination_type == ceres::CONVERGENCE ||
                   summary.termination_type == ceres::USER_SUCCESS;
   out.cost = summary.final_cost;
-  if (!std::isfinite(out.cost)) out.cost = std::numeric_limits<double>::infinity();
+  // FAILURE: an evaluation or the linear solver failed; the point it stopped at is no result.
+  if (!std::isfinite(out.cost) || summary.termination_type == ceres::FAILURE)
+    out.cost = std::numeric_limits<double>::infinity();
   return out;
 }
 

@@ -32,13 +32,16 @@ struct LocalProblem {
   const std::vector<model::QuadratureNode>* quadrature = nullptr;
 };
 
+// Whether the pressure exponent n is among the free parameters (a power law's shape is fitted).
+bool exponent_free(const LocalProblem& p);
+
 // The ring-integral table a pass at x uses (nullptr: radial quadrature or a closed form).
 std::shared_ptr<const model::RingIntegralTable> pass_table(const LocalProblem& p,
                                                            const ParamVector& x, bool n_slopes);
 
 struct LocalOutcome {
   ParamVector x{};
-  double cost = 0.0;  // 1/2 sum of squared (robustified) residuals; +inf if the fit failed
+  double cost = 0.0;  // 1/2 sum of squared (robustified) residuals; +inf if Ceres failed
   int iterations = 0;
   std::string termination;  // Ceres' termination type, e.g. CONVERGENCE
   bool converged = false;

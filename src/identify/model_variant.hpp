@@ -102,6 +102,13 @@ inline std::shared_ptr<const model::RingIntegralTable> ring_table_for(
   return std::make_shared<const model::RingIntegralTable>(at, n_slope);
 }
 
+// The same for one pass over `rows` rows: nullptr where the radial quadrature is cheaper.
+inline std::shared_ptr<const model::RingIntegralTable> ring_table_for_rows(
+    ModelKind kind, const model::PressureLaw<double>& law, double n, bool n_slope,
+    std::size_t rows) {
+  return rows >= kRingTableMinRows ? ring_table_for(kind, law, n, n_slope) : nullptr;
+}
+
 // Evaluates one variant for a fixed parameter vector; construct once, call per row.
 template <typename T>
 class ModelEvaluator {

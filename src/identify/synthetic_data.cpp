@@ -48,8 +48,7 @@ Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
   if (design.loads.empty() || design.slip_angles.empty())
     throw std::invalid_argument("the design needs at least one load and one slip angle");
   const ModelEvaluator<double> model(
-      kind, law, params.data(),
-      design.rows >= kRingTableMinRows ? ring_table_for(kind, law, params[kN], false) : nullptr);
+      kind, law, params.data(), ring_table_for_rows(kind, law, params[kN], false, design.rows));
   NormalStream normal(seed);
   Dataset d;
   d.source = "generated";

@@ -74,8 +74,6 @@ class RingIntegralTable {
 
   const PressureLaw<double>& law() const { return law_; }
   bool has_n_slope() const { return slopes_; }
-  std::size_t pieces() const { return pieces_.size(); }
-  std::size_t evaluations() const { return evaluations_; }
 
   // The six integrals at eps in [0, inf) (P, Q, S, U, V, X), and with slopes their derivatives
   // with respect to n. eps = inf (pure sliding) is the caller's: every integral is a moment.
@@ -117,7 +115,6 @@ class RingIntegralTable {
 
   // g_j at one node: the quadrature divided by the normalisers.
   std::array<double, kChannels> node_values(double eps) {
-    ++evaluations_;
     std::array<double, kChannels> g{};
     const auto n = ring_integral_normalisers(eps);
     if (slopes_) {
@@ -189,7 +186,6 @@ class RingIntegralTable {
   bool slopes_;
   std::vector<double> starts_;  // u0 of every piece, increasing
   std::vector<Piece> pieces_;
-  std::size_t evaluations_ = 0;
 };
 
 }  // namespace frictionid::model
