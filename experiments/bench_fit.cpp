@@ -4,8 +4,8 @@
 // every model parameter free (seed: 6, exact hertz: f, kappa, h; exact power:1.7: also n).
 #include <benchmark/benchmark.h>
 
+#include <frictionid/synthetic_data.hpp>
 #include "identify/local_stage.hpp"
-#include "identify/synthetic_data.hpp"
 
 namespace {
 

@@ -10,10 +10,10 @@
 #include <random>
 #include <vector>
 
-#include "identify/model_variant.hpp"
-#include "model/approximants.hpp"
-#include "model/coefficients.hpp"
-#include "model/exact_model.hpp"
+#include <frictionid/model/approximants.hpp>
+#include <frictionid/model/coefficients.hpp>
+#include <frictionid/model/exact_model.hpp>
+#include <frictionid/model_variant.hpp>
 #include "model/reference_integrator.hpp"  // tests/: the brute-force 2-D reference
 
 namespace {

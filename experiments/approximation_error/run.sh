@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# How far are the closed-form approximants (seed, corrected; physics.md §3) from the exact
+# How far are the closed-form approximants (seed, corrected; docs/physics.md §3) from the exact
 # ring-reduced model (§2)? Relative error of T_x, T_y, M_z over eps = 1e-4 ... 1e4 for uniform,
 # Hertz and parabolic pressure and kappa in {0.5, 1, 2}, (i) with a, b, m (b_tilde, p0) from the
 # pressure law and (ii) with them fitted by `frictionid fit` to noise-free exact data (f, kappa,

@@ -3,7 +3,7 @@
 
 Re-implements, in vectorised numpy, exactly what frictionid does for `fit --model seed`:
 
-  * the seed model for any slip direction, as src/model/approximants.hpp writes it (same
+  * the seed model for any slip direction, as include/frictionid/model/approximants.hpp writes it (same
     small/large-eps branches, same tilt stand-ins, shape constants from the pressure law's
     moments as in approximant_shape() and law_moments());
   * the whitening of src/identify/fitter.cpp: residual = (model - measured)/scale per channel,
@@ -32,14 +32,14 @@ import numpy as np
 from scipy.optimize import least_squares
 
 PARAMS = ("f", "kappa", "h", "a", "b", "m")
-# frictionid's defaults (src/identify/fit_settings.hpp, default_parameter_settings).
+# frictionid's defaults (src/identify/fit_settings.cpp, default_parameter_settings).
 LOWER = np.array([0.01, 0.05, -1.0, 1e-3, 4.0, 1.0])
 UPPER = np.array([5.0, 20.0, 1.0, 4.0, 1e4, 1e4])
 CHANNELS = ("T_x", "T_y", "M_z", "M_roll")
 KINEMATICS = ("v_x", "v_y", "omega", "N", "R")
 
 
-# --- pressure law: moments m_0..m_5 (src/model/pressure_law.hpp, closed forms only) -----------
+# --- pressure law: moments m_0..m_5 (include/frictionid/model/pressure_law.hpp, closed forms only) -----------
 def law_moments(law):
     if law == "hertz":
         return [math.pi / 4, 1.0 / 3, math.pi / 16, 2.0 / 15, math.pi / 32, 8.0 / 105]
@@ -62,7 +62,7 @@ def approximant_shape(mo):
 
 
 class Kinematics:
-    """slip_geometry() of src/model/kinematics.hpp for every row; parameter-independent, so it is
+    """slip_geometry() of include/frictionid/model/kinematics.hpp for every row; parameter-independent, so it is
     computed once per dataset (frictionid recomputes it per row and evaluation)."""
 
     def __init__(self, v_x, v_y, omega, N, R):

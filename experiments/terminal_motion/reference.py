@@ -1,6 +1,6 @@
-"""Independent reference for the terminal ratio eps* of a sliding-spinning body (physics.md §4).
+"""Independent reference for the terminal ratio eps* of a sliding-spinning body (docs/physics.md §4).
 
-Nothing here uses frictionid: the ring kernels P(k) and J(k) = Q + S of physics.md §2 (kappa = 1,
+Nothing here uses frictionid: the ring kernels P(k) and J(k) = Q + S of docs/physics.md §2 (kappa = 1,
 no tilt) come from scipy's complete elliptic integrals, the radial integrals from adaptive
 quadrature split at rho = eps, and eps* is the root of
     t(eps)/eps = (m2/m1) m_hat(eps) / i,    i = I/(M_b R^2),
@@ -64,6 +64,17 @@ def terminal(sigma, lo, inertia_ratio):
     return exact, seed
 
 
+# Inner radii of the annulus curve (run.sh simulates the same list).
+ANNULUS_B = (0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 0.99)
+
+
+def ring_terminal():
+    """eps* of the ring law (all load on rho = 1, I = M_b R^2): the root of P(eps) = eps J(eps).
+    By the closed forms P - eps J = (1 - eps^2)(E - K) 4/eps (eps < 1, modulus eps), which
+    vanishes only at eps = 1; the root is found numerically all the same."""
+    return brentq(lambda e: P(e) / e - J(e), 0.5, 2.0, xtol=1e-15, rtol=1e-15)
+
+
 def fmt(x):
     return "" if x is None else repr(float(x))
 
@@ -79,10 +90,13 @@ def main():
     for n in (8, 20, 50):
         e, s = terminal(lambda r, n=n: r ** n, 0.0, 1.0)
         rows.append(("rim_pressure_rho^n", n, 1.0, e, s))
-    for eta in (0.0, 0.5, 0.9, 0.99, 0.999):
+    for eta in ANNULUS_B + (0.999,):
         # uniform annular disk: contact on eta < rho < 1, I = M (R_in^2 + R^2)/2
         e, s = terminal(lambda r: 1.0, eta, (1 + eta * eta) / 2)
         rows.append(("annulus", eta, (1 + eta * eta) / 2, e, s))
+    # The ring law is the annulus at B = 1; its seed coefficients a = 4, m = 4 with mu = 1, i = 1
+    # give eps*^2 = (4 - 1)/(4 - 1) = 1.
+    rows.append(("annulus", 1.0, 1.0, ring_terminal(), 1.0))
     print("case,eta_or_n,inertia_ratio,eps_exact,eps_seed")
     for c, p, i, e, s in rows:
         print(f"{c},{p},{i!r},{fmt(e)},{fmt(s)}")

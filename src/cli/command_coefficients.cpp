@@ -1,16 +1,17 @@
 // frictionid coefficients: the moments of a pressure law and the approximant coefficients they
-// imply (physics.md §3).
+// imply (docs/physics.md §3).
 #include <fmt/format.h>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/io/pressure_law_reader.hpp>
+#include <frictionid/model/coefficients.hpp>
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
-#include "io/input_error.hpp"
-#include "io/pressure_spec.hpp"
-#include "model/coefficients.hpp"
+#include "cli/option_parsers.hpp"
 
 namespace frictionid::cli {
 
@@ -18,7 +19,7 @@ int run_coefficients(const CoefficientsOptions& o) {
   if (!(o.kappa > 0.0) || !std::isfinite(o.kappa))
     throw InputError("--kappa must be a finite number > 0");
   if (!std::isfinite(o.alpha)) throw InputError("--alpha must be a finite angle in radians");
-  const auto law = parse_pressure_law(o.pressure);
+  const auto law = parse_pressure_option(o.pressure);
   const auto mo = model::law_moments(law);
   const auto c = model::coefficients(mo, o.kappa, o.alpha);
   for (double v : {c.a, c.b, c.m, c.b_tilde, c.p0, c.mu_M, c.rho_roll})
@@ -27,23 +28,26 @@ int run_coefficients(const CoefficientsOptions& o) {
                        " is too small: m = ((1+kappa) m2/(d22 m3))^2 overflows");
   const auto ok = model::check_consistency(c, o.kappa, o.alpha);
 
-  nlohmann::ordered_json j;
-  j["pressure"] = pressure_law_label(law, o.pressure);
-  j["kappa"] = o.kappa;
-  j["alpha"] = o.alpha;
-  for (int k = 0; k <= 3; ++k) j["m" + std::to_string(k)] = mo[k];
-  j["a"] = c.a;
-  j["b"] = c.b;
-  j["m"] = c.m;
-  j["b_tilde"] = c.b_tilde;
-  j["p0"] = c.p0;
-  j["mu_M"] = c.mu_M;
-  j["M_roll_per_hNR"] = c.rho_roll;
-  j["consistency"] = {{"a_at_most_4", ok.a_at_most_4},
-                      {"b_at_least_4", ok.b_at_least_4},
-                      {"m_lower_bound", ok.m_lower},
-                      {"m_upper_bound", ok.m_upper},
-                      {"all", ok.all()}};
+  const nlohmann::ordered_json j = {{"pressure", pressure_law_label(law, o.pressure)},
+                                    {"kappa", o.kappa},
+                                    {"alpha", o.alpha},
+                                    {"m0", mo[0]},
+                                    {"m1", mo[1]},
+                                    {"m2", mo[2]},
+                                    {"m3", mo[3]},
+                                    {"a", c.a},
+                                    {"b", c.b},
+                                    {"m", c.m},
+                                    {"b_tilde", c.b_tilde},
+                                    {"p0", c.p0},
+                                    {"mu_M", c.mu_M},
+                                    {"M_roll_per_hNR", c.rho_roll},
+                                    {"consistency",
+                                     {{"a_at_most_4", ok.a_at_most_4},
+                                      {"b_at_least_4", ok.b_at_least_4},
+                                      {"m_lower_bound", ok.m_lower},
+                                      {"m_upper_bound", ok.m_upper},
+                                      {"all", ok.all()}}}};
 
   if (o.format == "json") {
     std::cout << j.dump(2) << "\n";

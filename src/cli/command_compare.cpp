@@ -1,15 +1,18 @@
 // frictionid compare: fit several model variants to the same rows, report them side by side.
 #include <cstdio>
 
+#include <frictionid/fitter.hpp>
+#include <frictionid/io/compare_report.hpp>
+#include <frictionid/io/dataset_csv.hpp>
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/model_comparison.hpp>
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/fit_options.hpp"
-#include "identify/fitter.hpp"
-#include "identify/model_comparison.hpp"
-#include "io/compare_report.hpp"
-#include "io/dataset_csv.hpp"
-#include "io/input_error.hpp"
-#include "io/option_parsers.hpp"
+#include "cli/option_parsers.hpp"
+#include "cli/terminal_observer.hpp"
+#include "io/report_directory_lock.hpp"
+#include "io/report_transaction.hpp"
 
 namespace frictionid::cli {
 
@@ -20,11 +23,15 @@ int run_compare(const CompareOptions& o) {
       throw InputError("--models: unknown model '" + name + "' (expected seed, corrected, exact)");
     settings.push_back(fit_settings_from_options(o.fit, name, /*lenient=*/true));
   }
-  const Dataset data = load_dataset_csv(o.fit.data, parse_column_map(o.fit.columns));
   const std::atomic<bool>* interrupted = install_interrupt_handler();
+  // Held for the whole run, so that two runs into one directory cannot interleave.
+  const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait);
+  check_report_directory_replaceable(o.fit.report);
+  const Dataset data = load_dataset_csv(o.fit.data, parse_column_map(o.fit.columns));
   ModelComparison c;
   try {
-    c = compare_models(data, settings, interrupted);
+    TerminalObserver observer(interrupted, show_progress(o.fit));
+    c = compare_models(data, settings, &observer);
   } catch (const FitError& e) {
     std::fprintf(stderr, "frictionid: compare failed: %s; no report written\n", e.what());
     return interrupted->load() ? kExitInterrupted : kExitFitFailed;

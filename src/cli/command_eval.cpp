@@ -5,20 +5,34 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include <frictionid/io/dataset_csv.hpp>
+#include <frictionid/io/dataset_writer.hpp>
+#include <frictionid/io/input_error.hpp>
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/model_setup.hpp"
+#include "cli/option_parsers.hpp"
 #include "io/atomic_file.hpp"
-#include "io/dataset_csv.hpp"
-#include "io/dataset_writer.hpp"
-#include "io/input_error.hpp"
 
 namespace frictionid::cli {
 
 namespace {
 
-// Every row of a kinematics CSV (dataset columns; channels optional), predictions appended as
-// T_x,T_y,M_z,M_roll,N (suffixed _model where the input already has such a column).
+// A CSV field as written: quoted when it holds a comma, a quote or surrounding spaces.
+std::string csv_field(const std::string& s) {
+  const bool quote = s.find_first_of(",\"\r\n") != std::string::npos ||
+                     (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.back() == ' ' ||
+                                     s.back() == '\t'));
+  if (!quote) return s;
+  std::string out = "\"";
+  for (char ch : s) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return out + "\"";
+}
+
+// Every row of a kinematics CSV (dataset columns; channels optional), then the file's other
+// columns as they were (slip angle, run ids: so predictions can be plotted against them), then
+// the predictions T_x,T_y,M_z,M_roll,N (suffixed _model where the input already has such a
+// column).
 int eval_file(const EvalOptions& o, const ModelSetup& s) {
   if (o.output.empty()) throw InputError("eval --input needs --output FILE");
   if (o.vx || o.vy || o.omega)
@@ -30,6 +44,7 @@ int eval_file(const EvalOptions& o, const ModelSetup& s) {
   std::string text = dataset_csv_text(d);
   const std::size_t header_end = text.find('\n');
   std::string header = text.substr(0, header_end);
+  for (const auto& name : d.extra_names) header += "," + csv_field(name);
   for (const char* name : {"T_x", "T_y", "M_z", "M_roll", "N"}) {
     const bool taken =
         (name == std::string("N")) ||
@@ -42,6 +57,7 @@ int eval_file(const EvalOptions& o, const ModelSetup& s) {
     const std::size_t eol = text.find('\n', pos);
     out.append(text, pos, eol - pos);
     pos = eol + 1;
+    for (const auto& column : d.extra_values) (out += ',') += csv_field(column[i]);
     const auto r = eval(model::Kinematics{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]});
     fmt::format_to(std::back_inserter(out), ",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", r.T_x,
                    r.T_y, r.M_z, r.M_roll, r.N);

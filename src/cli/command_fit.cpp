@@ -2,28 +2,45 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 
+#include <frictionid/fitter.hpp>
+#include <frictionid/io/dataset_csv.hpp>
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/io/report_writer.hpp>
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/fit_options.hpp"
-#include "identify/fitter.hpp"
-#include "io/dataset_csv.hpp"
-#include "io/input_error.hpp"
-#include "io/report_writer.hpp"
+#include "cli/option_parsers.hpp"
+#include "cli/terminal_observer.hpp"
+#include "io/report_directory_lock.hpp"
+#include "io/report_transaction.hpp"
 
 namespace frictionid::cli {
 
 int run_fit(const FitOptions& o) {
   using seconds = std::chrono::duration<double>;
   const FitSettings s = fit_settings_from_options(o, o.model);
+  const std::atomic<bool>* interrupted = install_interrupt_handler();
+  // Held for the whole run, so that two fits into one directory cannot interleave.
+  const ReportDirectoryLock lock(o.report, /*wait=*/!o.no_wait);
+  check_report_directory_replaceable(o.report);
   const auto t_read = std::chrono::steady_clock::now();
   const Dataset data = load_dataset_csv(o.data, parse_column_map(o.columns));
   const double read_s = seconds(std::chrono::steady_clock::now() - t_read).count();
+  ReportOptions report_options;
+  report_options.plot_x = o.plot_x;
+  report_options.color_by = o.color_by;
+  try {
+    check_report_columns(data, report_options);  // before the fit, not after it
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
 
-  const std::atomic<bool>* interrupted = install_interrupt_handler();
   FitResult r;
   try {
-    r = Fitter(s).fit(data, interrupted);
+    TerminalObserver observer(interrupted, show_progress(o));
+    r = Fitter(s).fit(data, &observer);
   } catch (const FitError& e) {
     std::error_code ec;
     const bool stale = std::filesystem::exists(std::filesystem::path(o.report) / "report.json", ec);
@@ -38,7 +55,7 @@ int run_fit(const FitOptions& o) {
     return kExitInterrupted;
   }
   const auto t_write = std::chrono::steady_clock::now();
-  const auto files = write_report(o.report, r, data);
+  const auto files = write_report(o.report, r, data, report_options);
   const double write_s = seconds(std::chrono::steady_clock::now() - t_write).count();
 
   std::printf("model %s, pressure %s, %zu rows, channels", r.model.c_str(), r.pressure.c_str(),
@@ -62,7 +79,7 @@ int run_fit(const FitOptions& o) {
       "%.3f s, report %.3f s\n",
       read_s, r.solver.global_time_s, r.solver.local_time_s, r.solver.statistics_time_s, write_s);
   for (const auto& w : r.warnings) std::printf("warning: %s\n", w.c_str());
-  std::printf("report: %s/report.md (%zu files)\n", o.report.c_str(), files.size());
+  std::printf("report: %s/report.html (%zu files)\n", o.report.c_str(), files.size());
   return kExitOk;
 }
 

@@ -3,14 +3,14 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include <frictionid/io/dataset_writer.hpp>
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/synthetic_data.hpp>
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/model_setup.hpp"
-#include "identify/synthetic_data.hpp"
+#include "cli/option_parsers.hpp"
 #include "io/atomic_file.hpp"
-#include "io/dataset_writer.hpp"
-#include "io/input_error.hpp"
-#include "io/option_parsers.hpp"
 
 namespace frictionid::cli {
 
@@ -63,12 +63,7 @@ int run_generate(const GenerateOptions& o) {
   data.source = o.output;
 
   if (!o.truth.empty()) {
-    nlohmann::ordered_json t;
-    t["model"] = model_name(s.kind);
-    t["pressure"] = s.law_label;
-    nlohmann::ordered_json p;
-    for (int i : model_parameters(s.kind, s.law.kind)) p[param_names()[i]] = s.params[i];
-    t["parameters"] = p;
+    nlohmann::ordered_json t = model_json(s);
     t["noise"] = {
         {"relative", o.noise}, {"absolute", o.noise_abs}, {"sigma_columns", o.sigma_columns}};
     t["seed"] = o.seed;

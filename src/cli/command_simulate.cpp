@@ -1,5 +1,5 @@
 // frictionid simulate: a flat body sliding and spinning to rest on a plane under the friction of
-// any model variant (physics.md §4); JSON summary on stdout, trajectory CSV on request.
+// any model variant (docs/physics.md §4); JSON summary on stdout, trajectory CSV on request.
 #include <fmt/format.h>
 #include <algorithm>
 #include <chrono>
@@ -10,12 +10,13 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/model/sliding_spinning_body.hpp>
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/model_setup.hpp"
 #include "io/atomic_file.hpp"
-#include "io/input_error.hpp"
-#include "model/sliding_spinning_body.hpp"
+#include "io/json_number.hpp"
 
 namespace frictionid::cli {
 
@@ -26,11 +27,6 @@ constexpr double kStandardGravity = 9.81;  // g of the default N = M_b g [m/s^2]
 void require_finite(double x, const char* name, bool positive) {
   if (!std::isfinite(x) || (positive && !(x > 0.0)))
     throw InputError(std::string(name) + " must be a finite number" + (positive ? " > 0" : ""));
-}
-
-// JSON has no infinity: eps = inf (no spin left) is written as null.
-nlohmann::ordered_json finite_or_null(double x) {
-  return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
 }
 
 std::string trajectory_csv(const model::BodySimulation& sim) {
@@ -76,7 +72,12 @@ int run_simulate(const SimulateOptions& o) {
   settings.max_steps = o.max_steps;
   settings.record = !o.output.empty();
 
-  const ModelEvaluator<double> eval(s.kind, s.law, s.params.data());
+  // A tabulated law is integrated piece by piece between its samples: thousands of steps of the
+  // integrator pay for its ring-integral table at once.
+  const ModelEvaluator<double> eval(s.kind, s.law, s.params.data(),
+                                    s.law.kind == model::PressureKind::Table
+                                        ? ring_table_for(s.kind, s.law, s.params[kN], false)
+                                        : nullptr);
   const auto friction = [&eval](const model::Kinematics& k) { return eval(k); };
   const auto start = std::chrono::steady_clock::now();
   model::BodySimulation sim;
@@ -110,38 +111,34 @@ int run_simulate(const SimulateOptions& o) {
     }
   }
 
-  nlohmann::ordered_json j;
-  j["model"] = model_name(s.kind);
-  j["pressure"] = s.law_label;
-  nlohmann::ordered_json params;
-  for (int i : model_parameters(s.kind, s.law.kind)) params[param_names()[i]] = s.params[i];
-  j["parameters"] = params;
-  j["inertia_ratio"] = body.inertia_ratio;
-  j["mass"] = body.mass;
-  j["R"] = body.R;
-  j["N"] = body.N;
-  j["v0"] = o.v0;
-  j["omega0"] = o.omega0;
-  j["slip_angle_deg"] = o.slip_angle_deg;
-  j["eps0"] = finite_or_null(o.omega0 != 0.0 ? o.v0 / (std::fabs(o.omega0) * o.R) : HUGE_VAL);
-  j["eps_final"] = finite_or_null(sim.eps_final);
-  j["eps_fixed_point"] = fixed;
-  j["t_stop_slide"] = sim.t_stop_slide;
-  j["t_stop_spin"] = sim.t_stop_spin;
+  nlohmann::ordered_json j = model_json(s);
   const double t_stop = std::max(sim.t_stop_slide, sim.t_stop_spin);
-  j["t_stop_relative_difference"] =
-      t_stop > 0.0 ? std::fabs(sim.t_stop_slide - sim.t_stop_spin) / t_stop : 0.0;
-  j["slip_angle_final_deg"] = sim.slip_angle_final * 180.0 / M_PI;
-  j["distance"] = sim.distance;
-  j["rotation"] = sim.rotation;
-  j["energy_initial"] = sim.energy_initial;
-  j["stopped"] = sim.stopped;
-  j["steps"] = sim.stats.accepted;
-  j["rejected_steps"] = sim.stats.rejected;
-  j["evaluations"] = sim.stats.evaluations;
-  j["tol"] = o.tol;
-  j["stop_fraction"] = o.stop_fraction;
-  j["wall_time_s"] = wall;
+  j.update(nlohmann::ordered_json{
+      {"inertia_ratio", body.inertia_ratio},
+      {"mass", body.mass},
+      {"R", body.R},
+      {"N", body.N},
+      {"v0", o.v0},
+      {"omega0", o.omega0},
+      {"slip_angle_deg", o.slip_angle_deg},
+      {"eps0", json_number(o.omega0 != 0.0 ? o.v0 / (std::fabs(o.omega0) * o.R) : HUGE_VAL)},
+      {"eps_final", json_number(sim.eps_final)},
+      {"eps_fixed_point", fixed},
+      {"t_stop_slide", sim.t_stop_slide},
+      {"t_stop_spin", sim.t_stop_spin},
+      {"t_stop_relative_difference",
+       t_stop > 0.0 ? std::fabs(sim.t_stop_slide - sim.t_stop_spin) / t_stop : 0.0},
+      {"slip_angle_final_deg", sim.slip_angle_final * 180.0 / M_PI},
+      {"distance", sim.distance},
+      {"rotation", sim.rotation},
+      {"energy_initial", sim.energy_initial},
+      {"stopped", sim.stopped},
+      {"steps", sim.stats.accepted},
+      {"rejected_steps", sim.stats.rejected},
+      {"evaluations", sim.stats.evaluations},
+      {"tol", o.tol},
+      {"stop_fraction", o.stop_fraction},
+      {"wall_time_s", wall}});
   if (!o.output.empty()) {
     write_file_atomically(o.output, trajectory_csv(sim));
     j["trajectory_rows"] = sim.trajectory.size();

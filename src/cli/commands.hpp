@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace frictionid::cli {
 
@@ -49,6 +50,9 @@ struct FitOptions {
   std::string model = "seed";
   std::string pressure = "hertz";
   std::string fix, bounds, initial, loss = "none", channels, columns;
+  std::string noise_model = "auto";
+  std::string intervals = "model";
+  int bootstrap = 0;
   int starts = 4;
   unsigned long long seed = 1;
   long global_evaluations = 3000;
@@ -57,7 +61,10 @@ struct FitOptions {
   std::string global_algorithm = "crs2";
   int threads = 0;  // 0: every hardware thread; results do not depend on it
   std::string report;
+  bool no_wait = false;  // fail instead of waiting when another run holds the report's lock
   bool progress = false;
+  std::vector<std::string> plot_x;  // report: channels also against these columns
+  std::string color_by;             // report: colours of the collapse plots
 };
 int run_fit(const FitOptions& o);
 
@@ -66,6 +73,16 @@ struct CompareOptions {
   std::string models = "seed,corrected,exact";
 };
 int run_compare(const CompareOptions& o);
+
+struct BatchOptions {
+  FitOptions fit;  // fit.data unused; fit.threads is used per fit only with --jobs 1
+  std::vector<std::string> inputs;       // CSV files, globs, directories or manifests
+  std::string group_by;                  // split each file by these columns: COL[,COL]
+  std::string per_run_reports = "json";  // none, json or full
+  bool force = false;                    // fit every run again, whatever the journal holds
+  int jobs = 0;                          // runs fitted at once; 0: every hardware thread
+};
+int run_batch(const BatchOptions& o);
 
 struct SimulateOptions {
   std::string model = "exact";

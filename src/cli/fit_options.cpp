@@ -4,18 +4,21 @@
 
 #include <algorithm>
 #include <csignal>
+#include <cstdio>
+#include <vector>
 
-#include "io/input_error.hpp"
-#include "io/option_parsers.hpp"
-#include "io/pressure_spec.hpp"
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/io/pressure_law_reader.hpp>
+#include "cli/option_parsers.hpp"
+#include "io/interruption.hpp"
 
 namespace frictionid::cli {
 
 namespace {
 
-std::atomic<bool> g_interrupted{false};
+std::atomic<bool>* g_interrupted = nullptr;
 extern "C" void on_interrupt(int) {
-  g_interrupted.store(true);
+  g_interrupted->store(true);
 }
 
 LossKind parse_loss(const std::string& spec, double& scale) {
@@ -33,6 +36,16 @@ LossKind parse_loss(const std::string& spec, double& scale) {
   throw InputError("--loss '" + spec + "': expected none, huber:S, cauchy:S or soft_l1:S");
 }
 
+NoiseModelKind parse_noise_model(const std::string& name) {
+  if (name == "auto") return NoiseModelKind::Auto;
+  if (name == "constant") return NoiseModelKind::Constant;
+  if (name == "relative") return NoiseModelKind::Relative;
+  if (name == "affine") return NoiseModelKind::Affine;
+  if (name == "columns") return NoiseModelKind::Columns;
+  throw InputError("--noise-model '" + name +
+                   "': expected auto, constant, relative, affine or columns");
+}
+
 // The parameter index of name, or -1 when the model does not use it and lenient is set.
 int model_param_index(const std::string& option, const std::string& name,
                       const std::vector<int>& used, const std::string& model, bool lenient) {
@@ -48,12 +61,49 @@ int model_param_index(const std::string& option, const std::string& name,
   return *i;
 }
 
+std::string g(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
+// No start value or bound is ignored or changed silently: what the fit would
+// not honour is an error.
+void check_option_semantics(const FitOptions& o, const FitSettings& s, const std::vector<int>& used,
+                            const std::vector<bool>& start_given,
+                            const std::vector<bool>& bounds_given) {
+  if (!o.initial.empty() && !o.no_global)
+    throw InputError(
+        "--param sets where the local fit starts, which only --no-global uses (the global stage "
+        "chooses its own starts); add --no-global or leave --param out");
+  for (int i : used) {
+    const ParameterSetting& p = s.params[i];
+    const std::string name = param_names()[i];
+    const bool inside = p.initial >= p.lower && p.initial <= p.upper;
+    const std::string range = "[" + g(p.lower) + ", " + g(p.upper) + "]";
+    if (p.fixed && bounds_given[i] && !inside)
+      throw InputError("--fix " + name + "=" + g(p.initial) + " lies outside --bounds " + name +
+                       "=" + g(p.lower) + ":" + g(p.upper) +
+                       "; a fixed parameter is not fitted, so drop one of the two");
+    if (!p.fixed && start_given[i] && !inside)
+      throw InputError("--param " + name + "=" + g(p.initial) + " lies outside " + name +
+                       "'s bounds " + range + (bounds_given[i] ? "" : " (the defaults)") +
+                       "; the fit cannot start there: change --param or widen --bounds");
+  }
+}
+
 }  // namespace
 
+bool show_progress(const FitOptions& o) {
+  return o.progress || ::isatty(STDERR_FILENO);
+}
+
 const std::atomic<bool>* install_interrupt_handler() {
+  g_interrupted = &interrupt_flag();
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
-  return &g_interrupted;
+  std::signal(SIGHUP, on_interrupt);
+  return g_interrupted;
 }
 
 FitSettings fit_settings_from_options(const FitOptions& o, const std::string& model, bool lenient) {
@@ -61,18 +111,18 @@ FitSettings fit_settings_from_options(const FitOptions& o, const std::string& mo
   if (o.starts < 1) throw InputError("--starts must be at least 1");
   if (o.global_evaluations < 10) throw InputError("--global-evaluations must be at least 10");
   if (o.global_subsample < 1) throw InputError("--global-subsample must be at least 1");
-  FitSettings s;
   const auto kind = parse_model_kind(model);
   if (!kind) throw InputError("--model '" + model + "': expected seed, corrected or exact");
-  s.model = *kind;
-  s.law = parse_pressure_law(o.pressure);
-  s.law_label = pressure_law_label(s.law, o.pressure);
-  s.params = default_parameter_settings(s.law);
+  const auto law = parse_pressure_option(o.pressure);
+  FitSettings s = FitSettings::defaults(*kind, law, pressure_law_label(law, o.pressure));
   const auto used = model_parameters(s.model, s.law.kind);
+  std::vector<bool> start_given(s.params.size(), false), bounds_given(s.params.size(), false);
   if (!o.initial.empty())
     for (const auto& [name, v] : parse_assignments("--param", o.initial)) {
       const int i = model_param_index("--param", name, used, model, lenient);
-      if (i >= 0) s.params[i].initial = v;
+      if (i < 0) continue;
+      s.params[i].initial = v;
+      start_given[i] = true;
     }
   if (!o.bounds.empty())
     for (const auto& [name, lohi] : parse_bounds("--bounds", o.bounds)) {
@@ -82,6 +132,7 @@ FitSettings fit_settings_from_options(const FitOptions& o, const std::string& mo
         throw InputError("--bounds: " + name + " must stay > 0 (lower bound > 0)");
       s.params[i].lower = lohi.first;
       s.params[i].upper = lohi.second;
+      bounds_given[i] = true;
     }
   if (!o.fix.empty())
     for (const auto& [name, v] : parse_assignments("--fix", o.fix)) {
@@ -98,6 +149,7 @@ FitSettings fit_settings_from_options(const FitOptions& o, const std::string& mo
   for (int i : used)
     if (s.params[i].fixed && s.params[i].log_scale && !(s.params[i].initial > 0.0))
       throw InputError(std::string("--fix: ") + param_names()[i] + " must be > 0");
+  check_option_semantics(o, s, used, start_given, bounds_given);
   if (!o.channels.empty())
     for (const auto& name : parse_name_list("--channels", o.channels)) {
       bool found = false;
@@ -111,6 +163,16 @@ FitSettings fit_settings_from_options(const FitOptions& o, const std::string& mo
                          "' (expected T_x, T_y, M_z, M_roll)");
     }
   s.loss = parse_loss(o.loss, s.loss_scale);
+  s.noise_model = parse_noise_model(o.noise_model);
+  s.intervals = o.intervals == "sandwich"  ? IntervalMethod::Sandwich
+                : o.intervals == "profile" ? IntervalMethod::Profile
+                : o.intervals == "model"
+                    ? IntervalMethod::Model
+                    : throw InputError("--intervals '" + o.intervals +
+                                       "': expected model, sandwich or profile");
+  if (o.bootstrap < 0 || o.bootstrap > 100000)
+    throw InputError("--bootstrap must be 0 (none) to 100000 replicates");
+  s.bootstrap = o.bootstrap;
   s.starts = o.starts;
   s.seed = o.seed;
   s.global = !o.no_global;
@@ -119,7 +181,6 @@ FitSettings fit_settings_from_options(const FitOptions& o, const std::string& mo
   s.global_subsample = o.global_subsample;
   if (o.threads < 0) throw InputError("--threads must be 0 (every hardware thread) or more");
   s.threads = o.threads;
-  s.progress = o.progress || ::isatty(STDERR_FILENO);
 
   return s;
 }

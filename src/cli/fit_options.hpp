@@ -4,8 +4,8 @@
 #include <atomic>
 #include <string>
 
+#include <frictionid/fit_settings.hpp>
 #include "cli/commands.hpp"
-#include "identify/fit_settings.hpp"
 
 namespace frictionid::cli {
 
@@ -14,7 +14,11 @@ namespace frictionid::cli {
 FitSettings fit_settings_from_options(const FitOptions& o, const std::string& model,
                                       bool lenient = false);
 
-// SIGINT/SIGTERM set the returned flag; fits stop at their next evaluation.
+// Whether fits show a progress line: --progress, or stderr is a terminal.
+bool show_progress(const FitOptions& o);
+
+// SIGINT, SIGTERM and SIGHUP set the returned flag (io/interruption.hpp): fits stop at their next
+// evaluation, and the report stage keeps the earlier report.
 const std::atomic<bool>* install_interrupt_handler();
 
 }  // namespace frictionid::cli

@@ -1,20 +1,55 @@
 // frictionid: identify the parameters of the coupled dry-friction model of a rolling, sliding and
 // spinning contact from force/torque data. The only translation unit that includes CLI11.
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <string>
 
+#include <frictionid/io/input_error.hpp>
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
-#include "io/input_error.hpp"
+#include "cli/option_parsers.hpp"
+#include "io/interruption.hpp"
 
 namespace {
 
 using namespace frictionid::cli;
 
+// Said wherever an option names a file to write (src/io/atomic_file.hpp).
+const char* const kOutputNote =
+    "; a regular file is replaced atomically, a symlink's target likewise; a FIFO, device or "
+    "/dev/stdout is written in place (not atomic)";
+
 const char* const kLawHelp =
-    "pressure law: uniform, hertz, parabolic, power:N (N >= 0), table:FILE";
+    "pressure law: uniform, hertz, parabolic, power:N (N >= 0), annulus:B (0 <= B < 1), ring, "
+    "table:FILE";
+
+// Counts and seeds are read by parse_whole_number (cli/option_parsers.hpp), not by CLI11, which
+// would wrap "-1" into 2^64-1: out-of-range values are rejected before anything is allocated.
+template <typename T>
+CLI::Option* add_whole_number(CLI::App* c, const std::string& name, T& target, std::uint64_t lo,
+                              std::uint64_t hi, const std::string& help) {
+  return c
+      ->add_option_function<std::string>(
+          name,
+          [&target, name, lo, hi](const std::string& text) {
+            try {
+              target = static_cast<T>(frictionid::parse_whole_number(name, text, lo, hi));
+            } catch (const frictionid::InputError& e) {
+              throw CLI::ValidationError(e.what());
+            }
+          },
+          help + " (" + std::to_string(lo) + " to " + std::to_string(hi) + ")")
+      ->type_name("UINT")
+      ->default_str(std::to_string(target));
+}
+
+// Largest --rows of generate: 10^7 rows are about 1 GB of CSV.
+constexpr std::uint64_t kMaxRows = 10'000'000;
+// The global stage seeds NLopt, which keeps only 32 bits of a seed: larger ones are rejected
+// instead of aliasing another seed.
+constexpr std::uint64_t kMaxFitSeed = 4'294'967'295ULL;
 
 void add_coefficients(CLI::App& app, CoefficientsOptions& o) {
   auto* c = app.add_subcommand("coefficients",
@@ -40,7 +75,8 @@ void add_eval(CLI::App& app, EvalOptions& o) {
   c->add_option("--N", o.N, "normal load [N]")->capture_default_str();
   c->add_option("--R", o.R, "contact radius [m]")->capture_default_str();
   c->add_option("--input", o.input, "CSV of kinematics (dataset columns)");
-  c->add_option("--output", o.output, "CSV to write: the input columns plus the predictions");
+  c->add_option("--output", o.output,
+                std::string("CSV to write: the input columns plus the predictions") + kOutputNote);
   c->add_option("--columns", o.columns, "rename columns: canonical=header,...");
 }
 
@@ -49,15 +85,16 @@ void add_generate(CLI::App& app, GenerateOptions& o) {
   c->add_option("--model", o.model, "seed, corrected or exact")->capture_default_str();
   c->add_option("--pressure", o.pressure, kLawHelp)->capture_default_str();
   c->add_option("--param", o.params, "true parameters f=..,kappa=..,h=..[,a=..,...]");
-  c->add_option("--rows", o.rows, "number of rows")->capture_default_str();
+  add_whole_number(c, "--rows", o.rows, 1, kMaxRows, "number of rows");
   c->add_option("--noise", o.noise, "relative Gaussian noise (fraction of each value)")
       ->capture_default_str();
   c->add_option("--noise-abs", o.noise_abs, "absolute Gaussian noise [channel units]")
       ->capture_default_str();
   c->add_flag("--sigma-columns", o.sigma_columns, "write the noise sigma as sigma_* columns");
-  c->add_option("--seed", o.seed, "random seed")->capture_default_str();
-  c->add_option("--output", o.output, "CSV file to write")->required();
-  c->add_option("--truth", o.truth, "JSON file for the true parameters and design");
+  add_whole_number(c, "--seed", o.seed, 0, UINT64_MAX, "random seed");
+  c->add_option("--output", o.output, std::string("CSV file to write") + kOutputNote)->required();
+  c->add_option("--truth", o.truth,
+                std::string("JSON file for the true parameters and design") + kOutputNote);
   c->add_option("--eps-min", o.eps_min, "smallest eps = v/(|omega| R)")->capture_default_str();
   c->add_option("--eps-max", o.eps_max, "largest eps")->capture_default_str();
   c->add_option("--loads", o.loads, "normal loads N [N], comma separated")->capture_default_str();
@@ -68,22 +105,37 @@ void add_generate(CLI::App& app, GenerateOptions& o) {
   c->add_flag("--forward-only", o.forward_only, "no rows with backward slip (v_x < 0)");
 }
 
-// The options fit and compare share.
-void add_fit_options(CLI::App* c, FitOptions& o) {
-  c->add_option("data", o.data, "dataset CSV")->required();
+// The options fit, compare and batch share (batch takes its own inputs instead of `data`).
+void add_fit_options(CLI::App* c, FitOptions& o, bool with_data = true) {
+  if (with_data) c->add_option("data", o.data, "dataset CSV")->required();
   c->add_option("--pressure", o.pressure, kLawHelp)->capture_default_str();
   c->add_option("--fix", o.fix, "hold parameters fixed: name=value,...");
   c->add_option("--bounds", o.bounds, "parameter bounds: name=lo:hi,...");
   c->add_option("--param", o.initial, "initial values (used with --no-global): name=value,...");
   c->add_option("--loss", o.loss, "none, huber:S, cauchy:S or soft_l1:S (per row, S in sigmas)")
       ->capture_default_str();
+  c->add_option("--noise-model", o.noise_model,
+                "per-channel noise: auto (sigma columns where given, else the variance function "
+                "with the smallest BIC), constant, relative, affine (estimated from the "
+                "residuals), or columns (the sigma columns as given)")
+      ->check(CLI::IsMember({"auto", "constant", "relative", "affine", "columns"}))
+      ->capture_default_str();
+  c->add_option("--intervals", o.intervals,
+                "the 95 % interval report.md shows first: model (from the covariance), sandwich "
+                "(HC3, no noise assumption) or profile (asymmetric, from the profile of the "
+                "cost; refits per step)")
+      ->check(CLI::IsMember({"model", "sandwich", "profile"}))
+      ->capture_default_str();
+  add_whole_number(c, "--bootstrap", o.bootstrap, 0, 100000,
+                   "wild (Rademacher) bootstrap refits for percentile intervals, seeded by --seed "
+                   "(0: none)");
   c->add_option("--starts", o.starts, "local fits from the best distinct global points")
       ->capture_default_str();
-  c->add_option("--seed", o.seed, "seed of the global stage")->capture_default_str();
+  add_whole_number(c, "--seed", o.seed, 0, kMaxFitSeed, "seed of the global stage");
   c->add_option("--global-evaluations", o.global_evaluations, "budget of the global stage")
       ->capture_default_str();
-  c->add_option("--global-subsample", o.global_subsample, "rows the global stage sees")
-      ->capture_default_str();
+  add_whole_number(c, "--global-subsample", o.global_subsample, 1, 1'000'000'000,
+                   "rows the global stage sees");
   c->add_option("--global-algorithm", o.global_algorithm,
                 "crs2, isres, direct, esch or random (see experiments/global_search)")
       ->check(CLI::IsMember({"crs2", "isres", "direct", "esch", "random"}))
@@ -95,7 +147,15 @@ void add_fit_options(CLI::App* c, FitOptions& o) {
                 "threads for the passes over the rows (0: every hardware thread); the results "
                 "do not depend on it")
       ->capture_default_str();
-  c->add_option("--report", o.report, "directory for report.json, report.md and plots")->required();
+  c->add_option("--report", o.report,
+                with_data ? "directory for report.json, report.md, report.html and plots; replaced "
+                            "as a whole, in one atomic step (DIR becomes a symlink to "
+                            ".DIR.r-XXXXXX)"
+                          : "directory for summary.csv, summary.json, journal.jsonl and runs/")
+      ->required();
+  c->add_flag("--no-wait", o.no_wait,
+              "fail at once when another run is writing the same --report directory "
+              "(default: wait for it)");
   c->add_flag("--progress", o.progress, "progress line on stderr (default: when it is a terminal)");
 }
 
@@ -104,6 +164,12 @@ void add_fit(CLI::App& app, FitOptions& o) {
       app.add_subcommand("fit", "Identify a model's parameters from a CSV and write a report");
   c->add_option("--model", o.model, "seed, corrected or exact")->capture_default_str();
   add_fit_options(c, o);
+  c->add_option("--plot-x", o.plot_x,
+                "report: also plot every channel against these CSV columns (e.g. slip_angle)")
+      ->delimiter(',');
+  c->add_option("--color-by", o.color_by,
+                "report: colour the collapse plots by this column (default: N when it has at "
+                "most 8 levels)");
 }
 
 void add_compare(CLI::App& app, CompareOptions& o) {
@@ -111,6 +177,27 @@ void add_compare(CLI::App& app, CompareOptions& o) {
       "compare", "Fit seed, corrected and exact to the same rows and report them side by side");
   c->add_option("--models", o.models, "models to compare, comma separated")->capture_default_str();
   add_fit_options(c, o.fit);
+}
+
+void add_batch(CLI::App& app, BatchOptions& o) {
+  auto* c = app.add_subcommand(
+      "batch",
+      "Fit many runs (files, a directory, a manifest or groups of one CSV) into one "
+      "summary table: DIR/summary.csv and DIR/summary.json");
+  c->add_option("inputs", o.inputs,
+                "CSV files, globs, directories (their *.csv) or manifest CSVs (a `path` column)")
+      ->required();
+  c->add_option("--model", o.fit.model, "seed, corrected or exact")->capture_default_str();
+  add_fit_options(c, o.fit, /*with_data=*/false);
+  c->add_option("--group-by", o.group_by, "split each CSV into one run per value of COL[,COL]");
+  c->add_option("--per-run-reports", o.per_run_reports,
+                "none, json (runs/<label>/report.json) or full (the whole report in "
+                "runs/<label>/)")
+      ->check(CLI::IsMember({"none", "json", "full"}))
+      ->capture_default_str();
+  c->add_flag("--force", o.force, "fit every run again, ignoring DIR/journal.jsonl");
+  c->add_option("--jobs", o.jobs, "runs fitted at once (0: every hardware thread)")
+      ->capture_default_str();
 }
 
 void add_simulate(CLI::App& app, SimulateOptions& o) {
@@ -128,7 +215,9 @@ void add_simulate(CLI::App& app, SimulateOptions& o) {
   c->add_option("--mass", o.mass, "body mass M_b [kg]")->capture_default_str();
   c->add_option("--R", o.R, "contact radius [m]")->capture_default_str();
   c->add_option("--N", o.N, "normal load [N] (default M_b g, g = 9.81)");
-  c->add_option("--output", o.output, "trajectory CSV: t,v_x,v_y,omega,eps,T_x,T_y,M_z,energy");
+  c->add_option(
+      "--output", o.output,
+      std::string("trajectory CSV: t,v_x,v_y,omega,eps,T_x,T_y,M_z,energy") + kOutputNote);
   c->add_option("--tol", o.tol, "integrator tolerance (relative and absolute)")
       ->capture_default_str();
   c->add_option("--stop-fraction", o.stop_fraction,
@@ -157,6 +246,8 @@ int main(int argc, char** argv) {
   add_compare(app, compare);
   SimulateOptions simulate;
   add_simulate(app, simulate);
+  BatchOptions batch;
+  add_batch(app, batch);
 
   // An empty value ("--param ''", "--fix=") would otherwise read as "option not given".
   for (int i = 1; i < argc; ++i) {
@@ -191,6 +282,10 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("fit")) return run_fit(fit);
     if (app.got_subcommand("compare")) return run_compare(compare);
     if (app.got_subcommand("simulate")) return run_simulate(simulate);
+    if (app.got_subcommand("batch")) return run_batch(batch);
+  } catch (const frictionid::Interrupted& e) {
+    std::fprintf(stderr, "frictionid: %s; the earlier report (if any) is unchanged\n", e.what());
+    return kExitInterrupted;
   } catch (const frictionid::InputError& e) {
     std::fprintf(stderr, "frictionid: error: %s\n", e.what());
     return kExitBadInput;

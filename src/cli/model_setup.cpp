@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "io/input_error.hpp"
-#include "io/option_parsers.hpp"
-#include "io/pressure_spec.hpp"
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/io/pressure_law_reader.hpp>
+#include "cli/option_parsers.hpp"
 
 namespace frictionid::cli {
 
@@ -14,7 +14,7 @@ ModelSetup make_model_setup(const std::string& model, const std::string& pressur
   const auto kind = parse_model_kind(model);
   if (!kind) throw InputError("--model '" + model + "': expected seed, corrected or exact");
   s.kind = *kind;
-  s.law = parse_pressure_law(pressure);
+  s.law = parse_pressure_option(pressure);
   const auto given = param_spec.empty() ? std::map<std::string, double>{}
                                         : parse_assignments("--param", param_spec);
   for (const auto& [name, value] : given) {
@@ -39,6 +39,12 @@ ModelSetup make_model_setup(const std::string& model, const std::string& pressur
     if (!(s.params[i] > 0.0))
       throw InputError(std::string("--param ") + param_names()[i] + " must be > 0");
   return s;
+}
+
+nlohmann::ordered_json model_json(const ModelSetup& s) {
+  nlohmann::ordered_json params;
+  for (int i : model_parameters(s.kind, s.law.kind)) params[param_names()[i]] = s.params[i];
+  return {{"model", model_name(s.kind)}, {"pressure", s.law_label}, {"parameters", params}};
 }
 
 }  // namespace frictionid::cli

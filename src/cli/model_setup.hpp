@@ -1,12 +1,14 @@
 // Turns the --model/--pressure/--param options into a model variant with a full parameter
-// vector: values the user leaves out follow from the pressure law (physics.md §3).
+// vector: values the user leaves out follow from the pressure law (docs/physics.md §3).
 #pragma once
 
 #include <array>
 #include <string>
 
-#include "identify/model_variant.hpp"
-#include "model/pressure_law.hpp"
+#include <nlohmann/json.hpp>
+
+#include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model_variant.hpp>
 
 namespace frictionid::cli {
 
@@ -20,5 +22,9 @@ struct ModelSetup {
 // Throws InputError on an unknown model, law or parameter name, or an out-of-range value.
 ModelSetup make_model_setup(const std::string& model, const std::string& pressure,
                             const std::string& param_spec);
+
+// The model, the pressure law's label and the model's parameters by name, as the JSON outputs
+// (simulate, the truth file of generate) start.
+nlohmann::ordered_json model_json(const ModelSetup& s);
 
 }  // namespace frictionid::cli

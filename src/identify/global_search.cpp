@@ -12,7 +12,7 @@ namespace {
 
 struct Archive {
   const GlobalSearchProblem* problem;
-  const std::atomic<bool>* cancel;
+  const std::function<bool()>* stop;
   std::vector<std::vector<double>> points;
   std::vector<double> values;
   nlopt::opt* opt = nullptr;
@@ -22,7 +22,7 @@ struct Archive {
 double nlopt_objective(unsigned n, const double* x, double* grad, void* data) {
   (void)grad;  // derivative-free algorithms only
   auto* a = static_cast<Archive*>(data);
-  if (a->cancel && a->cancel->load() && a->opt) a->opt->force_stop();
+  if (*a->stop && (*a->stop)() && a->opt) a->opt->force_stop();
   double f = a->problem->objective(x);
   if (!std::isfinite(f)) f = std::numeric_limits<double>::max();
   a->points.emplace_back(x, x + n);
@@ -56,9 +56,9 @@ std::vector<std::string> global_algorithms() {
 
 GlobalSearchOutcome global_search(const GlobalSearchProblem& problem, const std::string& algorithm,
                                   long max_evaluations, unsigned long long seed, int starts,
-                                  const std::atomic<bool>* cancel) {
+                                  const std::function<bool()>& stop) {
   const unsigned dim = static_cast<unsigned>(problem.lower.size());
-  Archive archive{&problem, cancel,  {},
+  Archive archive{&problem, &stop,   {},
                   {},       nullptr, static_cast<std::size_t>(std::max(max_evaluations, 1L))};
   GlobalSearchOutcome out;
   out.algorithm = algorithm;
@@ -67,7 +67,7 @@ GlobalSearchOutcome global_search(const GlobalSearchProblem& problem, const std:
     std::mt19937_64 rng(seed);
     std::vector<double> x(dim);
     for (long e = 0; e < max_evaluations; ++e) {
-      if (cancel && cancel->load()) break;
+      if (stop && stop()) break;
       for (unsigned i = 0; i < dim; ++i) {
         const double u = static_cast<double>(rng() >> 11) * 0x1.0p-53;
         x[i] = problem.lower[i] + u * (problem.upper[i] - problem.lower[i]);

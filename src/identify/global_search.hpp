@@ -2,7 +2,6 @@
 // archive of every point it evaluated so that the best *distinct* points can seed local fits.
 #pragma once
 
-#include <atomic>
 #include <functional>
 #include <string>
 #include <vector>
@@ -23,10 +22,11 @@ struct GlobalSearchOutcome {
 };
 
 // Algorithms: "crs2" (NLopt GN_CRS2_LM, the default), "isres", "direct", "esch", "random".
-// Deterministic for a given seed (NLopt's generator is seeded; one thread).
+// Deterministic for a given seed (NLopt's generator is seeded; one thread). `stop`, when given,
+// is polled at every evaluation and ends the search early when it returns true.
 GlobalSearchOutcome global_search(const GlobalSearchProblem& problem, const std::string& algorithm,
                                   long max_evaluations, unsigned long long seed, int starts,
-                                  const std::atomic<bool>* cancel = nullptr);
+                                  const std::function<bool()>& stop = {});
 
 std::vector<std::string> global_algorithms();
 // "NLopt GN_CRS2_LM" etc., for reports.

@@ -17,6 +17,7 @@
 #include "identify/local_stage.hpp"
 
 #include <ceres/ceres.h>
+#include <glog/logging.h>
 
 #include <algorithm>
 #include <cmath>
@@ -24,6 +25,7 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <mutex>
 
 #include "identify/normal_equations.hpp"
 #include "identify/row_chunks.hpp"
@@ -176,6 +178,29 @@ struct JetPasses {
     return out;
   }
 
+  // The meat of the HC3 sandwich: sum over residuals of J_i^T J_i r_i^2 / (1 - h_ii)^2 with the
+  // leverage h_ii = J_i B J_i^T, B = (J^T J)^-1 (the bread). Chunks are summed in order.
+  static bool meat(const LocalProblem& p, const ParamVector& x, const Eigen::MatrixXd& bread,
+                   Eigen::MatrixXd& out) {
+    // Dynamic sizes: one pass per fit, and GCC's bounds analysis trips over 1 x 1 fixed ones.
+    std::vector<Eigen::MatrixXd> part(problem_chunks(p), Eigen::MatrixXd::Zero(N, N));
+    std::vector<double> sum_sq;
+    const bool ok = pass(p, x, sum_sq, [&](std::size_t c, const Block& rows) {
+      const Eigen::MatrixXd j = rows.template leftCols<N>();
+      const Eigen::VectorXd h = (j * bread).cwiseProduct(j).rowwise().sum();
+      Eigen::VectorXd w(j.rows());
+      for (Eigen::Index i = 0; i < j.rows(); ++i) {
+        const double r = rows(i, N) / (1.0 - std::min(h[i], 1.0 - 1e-12));
+        w[i] = r * r;
+      }
+      part[c] = j.transpose() * w.asDiagonal() * j;
+    });
+    if (!ok) return false;
+    out = Eigen::MatrixXd::Zero(N, N);
+    for (const auto& m : part) out += m;
+    return true;
+  }
+
   // The k x k upper triangular factor R of m = Q R (zero rows below m's rank when m is short).
   static Eigen::MatrixXd triangular(const Eigen::MatrixXd& m) {
     Eigen::MatrixXd r = Eigen::MatrixXd::Zero(N, N);
@@ -235,6 +260,11 @@ template <int N>
 std::optional<JacobianFactor> factor_n(const LocalProblem& p, const ParamVector& x) {
   return JetPasses<N>::factor(p, x);
 }
+template <int N>
+bool meat_n(const LocalProblem& p, const ParamVector& x, const Eigen::MatrixXd& bread,
+            Eigen::MatrixXd& out) {
+  return JetPasses<N>::meat(p, x, bread, out);
+}
 
 // Jet width is a compile-time constant: dispatch on the number of free parameters.
 void check_width(std::size_t k) {
@@ -252,21 +282,35 @@ std::unique_ptr<ceres::CostFunction> make_cost_function(const LocalProblem& p,
 
 class Callback : public ceres::IterationCallback {
  public:
-  Callback(const std::atomic<bool>* cancel, bool progress, int start, int starts)
-      : cancel_(cancel), progress_(progress), start_(start), starts_(starts) {}
+  Callback(FitObserver* observer, int start, int starts, int max_iterations)
+      : observer_(observer), start_(start), starts_(starts), max_iterations_(max_iterations) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& it) override {
-    if (progress_)
-      std::fprintf(stderr, "\rfrictionid: local fit %d/%d, iteration %d, cost %.6e   ", start_,
-                   starts_, it.iteration, it.cost);
-    if (cancel_ && cancel_->load()) return ceres::SOLVER_ABORT;
-    return ceres::SOLVER_CONTINUE;
+    if (!observer_) return ceres::SOLVER_CONTINUE;
+    FitProgress p;
+    p.stage = FitStage::LocalFit;
+    p.done = it.iteration;
+    p.total = max_iterations_;
+    p.start = start_;
+    p.starts = starts_;
+    p.cost = it.cost;
+    observer_->on_progress(p);
+    return observer_->cancelled() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
   }
 
  private:
-  const std::atomic<bool>* cancel_;
-  bool progress_;
-  int start_, starts_;
+  FitObserver* observer_;
+  int start_, starts_, max_iterations_;
 };
+
+// Ceres logs through glog. A host that never set glog up would get its warnings ("Error in
+// evaluating the ResidualBlock ...", one per failed step) on stderr, while every failure reaches
+// the caller as a FitError or a warning in words; such a host gets only fatal messages.
+void quiet_solver_logging() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (!google::IsGoogleLoggingInitialized()) FLAGS_minloglevel = google::GLOG_FATAL;
+  });
+}
 
 }  // namespace
 
@@ -307,8 +351,20 @@ std::optional<JacobianFactor> jacobian_factor(const LocalProblem& p, const Param
   return factors[p.free.size() - 1](p, x);
 }
 
-LocalOutcome local_fit(const LocalProblem& p, const ParamVector& start,
-                       const std::atomic<bool>* cancel, int start_index, int starts) {
+std::optional<Eigen::MatrixXd> sandwich_meat(const LocalProblem& p, const ParamVector& x,
+                                             const Eigen::MatrixXd& bread) {
+  using Meat =
+      bool (*)(const LocalProblem&, const ParamVector&, const Eigen::MatrixXd&, Eigen::MatrixXd&);
+  static constexpr Meat meats[kParamCount] = {meat_n<1>, meat_n<2>, meat_n<3>, meat_n<4>, meat_n<5>,
+                                              meat_n<6>, meat_n<7>, meat_n<8>, meat_n<9>};
+  check_width(p.free.size());
+  Eigen::MatrixXd out;
+  if (!meats[p.free.size() - 1](p, x, bread, out)) return std::nullopt;
+  return out;
+}
+
+LocalOutcome local_fit(const LocalProblem& p, const ParamVector& start, FitObserver* observer,
+                       int start_index, int starts) {
   const FitSettings& s = *p.settings;
   LocalOutcome out;
   out.x = start;
@@ -340,7 +396,8 @@ LocalOutcome local_fit(const LocalProblem& p, const ParamVector& start,
   o.num_threads = 1;  // rows are spread over threads inside the block (row_chunks.hpp)
   o.logging_type = ceres::SILENT;
   o.minimizer_progress_to_stdout = false;
-  Callback cb(cancel, s.progress, start_index, starts);
+  Callback cb(observer, start_index, starts, s.max_iterations);
+  quiet_solver_logging();
   o.callbacks.push_back(&cb);
   ceres::Solver::Summary summary;
   ceres::Solve(o, &problem, &summary);

@@ -4,14 +4,14 @@
 
 #include <Eigen/Dense>
 #include <array>
-#include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "identify/dataset.hpp"
-#include "identify/fit_settings.hpp"
+#include <frictionid/dataset.hpp>
+#include <frictionid/fit_observer.hpp>
+#include <frictionid/fit_settings.hpp>
 #include "identify/normal_equations.hpp"
 #include "identify/residuals.hpp"
 
@@ -23,7 +23,8 @@ using ParamVector = std::array<double, kParamCount>;
 struct LocalProblem {
   ResidualRows rows;  // all rows of the problem
   const FitSettings* settings = nullptr;
-  std::vector<int> free;  // parameter indices Ceres moves; the rest come from the start
+  std::vector<int> used;  // parameter indices the model reads, in report order
+  std::vector<int> free;  // those Ceres moves; the rest come from the start
   int threads = 1;
   // Exact model with a fixed pressure law: its ring integrals tabulated once for the whole fit.
   // Without one, a free exponent n gets a table per pass when the rows make it worth it.
@@ -48,9 +49,9 @@ struct LocalOutcome {
   std::string full_report;  // Ceres' FullReport, for diagnostics
 };
 
-// Ceres from `start`; cancel, when set, stops it at the next iteration.
-LocalOutcome local_fit(const LocalProblem& p, const ParamVector& start,
-                       const std::atomic<bool>* cancel, int start_index, int starts);
+// Ceres from `start`, reporting each iteration to the observer (may be null), which can stop it.
+LocalOutcome local_fit(const LocalProblem& p, const ParamVector& start, FitObserver* observer,
+                       int start_index, int starts);
 
 // 1/2 sum of squared (robustified) residuals at x, or +inf where the model is not finite.
 double problem_cost(const LocalProblem& p, const ParamVector& x);
@@ -67,5 +68,11 @@ struct JacobianFactor {
   double cost = 0.0;
 };
 std::optional<JacobianFactor> jacobian_factor(const LocalProblem& p, const ParamVector& x);
+
+// The meat of the HC3 sandwich covariance B M B at x: M = sum over residuals of
+// J_i^T J_i r_i^2 / (1 - h_ii)^2, h_ii = J_i B J_i^T, for the bread B = (J^T J)^-1 of the free
+// parameters. nullopt where the model is not finite.
+std::optional<Eigen::MatrixXd> sandwich_meat(const LocalProblem& p, const ParamVector& x,
+                                             const Eigen::MatrixXd& bread);
 
 }  // namespace frictionid

@@ -1,11 +1,11 @@
-#include "identify/model_comparison.hpp"
+#include <frictionid/model_comparison.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-#include "identify/fitter.hpp"
-#include "model/coefficients.hpp"
+#include <frictionid/fitter.hpp>
+#include <frictionid/model/coefficients.hpp>
 
 namespace frictionid {
 namespace {
@@ -43,9 +43,9 @@ double collapsed_residual(const Dataset& d, Channel c, std::size_t i, double r) 
 }
 
 ModelComparison compare_models(const Dataset& data, const std::vector<FitSettings>& settings,
-                               const std::atomic<bool>* cancel) {
+                               FitObserver* observer) {
   ModelComparison c;
-  for (const auto& s : settings) c.fits.push_back(Fitter(s).fit(data, cancel));
+  for (const auto& s : settings) c.fits.push_back(Fitter(s).fit(data, observer));
   double best_aic = INFINITY, best_bic = INFINITY;
   for (const auto& f : c.fits) {
     best_aic = std::min(best_aic, f.aic);

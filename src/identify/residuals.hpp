@@ -1,16 +1,17 @@
-// Whitened, per-row robustified residuals of a model against a dataset (design.md "report.json"):
-// r = (model - measured)/sigma per channel; a robust loss rho acts on each row's squared norm s
-// by scaling the row's residuals with sqrt(rho(s)/s), so that the sum of squares is sum rho(s_i)
-// (per row, not per residual block). Templated on the scalar type: double or a Ceres Jet.
+// Whitened, per-row robustified residuals of a model against a dataset (docs/design.md
+// "report.json"): r = (model - measured)/sigma per channel; a robust loss rho acts on each row's
+// squared norm s by scaling the row's residuals with sqrt(rho(s)/s), so that the sum of squares is
+// sum rho(s_i) (per row, not per residual block). Templated on the scalar type: double or a Ceres
+// Jet.
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 #include <vector>
 
-#include "identify/dataset.hpp"
-#include "identify/fit_settings.hpp"
-#include "identify/model_variant.hpp"
+#include <frictionid/dataset.hpp>
+#include <frictionid/fit_settings.hpp>
+#include <frictionid/model_variant.hpp>
 
 namespace frictionid {
 

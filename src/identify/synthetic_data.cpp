@@ -1,4 +1,4 @@
-#include "identify/synthetic_data.hpp"
+#include <frictionid/synthetic_data.hpp>
 
 #include <cmath>
 #include <random>

@@ -1,17 +1,16 @@
-#include "io/compare_report.hpp"
+#include <frictionid/io/compare_report.hpp>
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <numeric>
 #include <stdexcept>
 
-#include "io/atomic_file.hpp"
-#include "io/gnuplot.hpp"
-#include "io/report_writer.hpp"
+#include <frictionid/io/report_writer.hpp>
+#include "io/json_number.hpp"
+#include "io/report_parts.hpp"
+#include "io/report_transaction.hpp"
 
 namespace frictionid {
 namespace {
@@ -19,12 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
-ojson num(double x) {
-  return std::isfinite(x) ? ojson(x) : ojson(nullptr);
-}
-ojson num(const std::optional<double>& x) {
-  return x ? num(*x) : ojson(nullptr);
-}
 std::string g6(double x) {
   return std::isfinite(x) ? fmt::format("{:.6g}", x) : "—";
 }
@@ -49,7 +42,7 @@ std::vector<std::string> coefficient_notes(const ModelComparison& c) {
   std::vector<std::string> notes;
   if (c.implied_by_exact.empty()) return notes;
   for (const auto& f : c.fits) {
-    if (f.model == "exact") continue;
+    if (f.model_kind == ModelKind::Exact) continue;
     for (const char* name : {"a", "b", "b_tilde", "m", "p0"}) {
       const ParameterEstimate* p = find_param(f, name);
       if (!p || p->fixed || !c.implied_by_exact.count(name)) continue;
@@ -65,7 +58,7 @@ std::vector<std::string> coefficient_notes(const ModelComparison& c) {
         notes.push_back(fmt::format(
             "{}: fitted {} = {} differs by {:+.0f}% from {} implied by the exact fit's pressure "
             "shape: the closed form's eps-shape is not the integral model's (errors of tens of "
-            "percent near eps = 1, physics.md §3), so {} absorbs that shape error instead of "
+            "percent near eps = 1, docs/physics.md §3), so {} absorbs that shape error instead of "
             "measuring the pressure distribution; read it as a curve-fit constant.",
             f.model, name, g6(p->value), 100 * rel, g6(implied), name));
       }
@@ -89,17 +82,20 @@ nlohmann::ordered_json compare_json(const ModelComparison& c) {
     m["pressure"] = f.pressure;
     ojson params;
     for (const auto& p : f.parameters)
-      params[p.name] = {{"value", num(p.value)}, {"stderr", num(p.std_error)}, {"fixed", p.fixed}};
+      params[p.name] = {{"value", json_number(p.value)},
+                        {"stderr", json_number(p.std_error)},
+                        {"fixed", p.fixed}};
     m["parameters"] = params;
-    m["cost"] = num(f.cost);
-    m["chi2"] = num(f.chi2);
-    m["aic"] = num(f.aic);
-    m["bic"] = num(f.bic);
-    m["delta_aic"] = num(c.delta_aic[k]);
-    m["delta_bic"] = num(c.delta_bic[k]);
+    m["cost"] = json_number(f.cost);
+    m["chi2"] = json_number(f.chi2);
+    m["aic"] = json_number(f.aic);
+    m["bic"] = json_number(f.bic);
+    m["delta_aic"] = json_number(c.delta_aic[k]);
+    m["delta_bic"] = json_number(c.delta_bic[k]);
     ojson rmse, ac;
-    for (const auto& cs : f.channel_summaries) rmse[channel_name(cs.channel)] = num(cs.rmse);
-    for (const auto& [name, v] : c.residual_autocorrelation[k]) ac[name] = num(v);
+    for (const auto& cs : f.channel_summaries)
+      rmse[channel_name(cs.channel)] = json_number(cs.rmse);
+    for (const auto& [name, v] : c.residual_autocorrelation[k]) ac[name] = json_number(v);
     m["rmse"] = rmse;
     m["residual_autocorrelation"] = ac;
     m["warnings"] = f.warnings;
@@ -110,7 +106,7 @@ nlohmann::ordered_json compare_json(const ModelComparison& c) {
   j["preferred_by_bic"] = c.preferred_by_bic;
   ojson implied = ojson::object();
   for (const char* name : {"a", "b", "m", "b_tilde", "p0"})
-    if (c.implied_by_exact.count(name)) implied[name] = num(c.implied_by_exact.at(name));
+    if (c.implied_by_exact.count(name)) implied[name] = json_number(c.implied_by_exact.at(name));
   j["implied_by_exact"] = implied;
   j["notes"] = coefficient_notes(c);
   return j;
@@ -173,6 +169,7 @@ std::string compare_markdown(const ModelComparison& c, const std::vector<std::st
   md += "\n## What the coefficients mean\n\n";
   if (notes.empty()) md += "- no exact fit to compare with\n";
   for (const auto& n : notes) md += "- " + n + "\n";
+  md += "\nThe same comparison on one page, plots inline: [compare.html](compare.html).\n";
   md += "\n## Per-model reports\n\n";
   for (const auto& f : c.fits) md += fmt::format("- [{0}]({0}/report.md)\n", f.model);
   if (!plots.empty()) {
@@ -186,63 +183,32 @@ std::string compare_markdown(const ModelComparison& c, const std::vector<std::st
 
 std::vector<std::string> write_compare_report(const std::string& dir, const ModelComparison& c,
                                               const Dataset& d) {
-  const fs::path out(dir);
-  std::error_code ec;
-  fs::create_directories(out, ec);
-  if (ec || !fs::is_directory(out))
-    throw std::runtime_error("cannot create report directory " + dir);
-  std::vector<std::string> written;
-  for (const auto& f : c.fits)
-    for (const auto& w : write_report((out / f.model).string(), f, d)) written.push_back(w);
-  write_file_atomically(
-      (out / "compare.json").string(),
-      compare_json(c).dump(2, ' ', false, ojson::error_handler_t::replace) + "\n");
-  written.push_back((out / "compare.json").string());
+  // Every file of the comparison, the models' reports too, in one transaction.
+  ReportTransaction transaction(dir);
+  const fs::path out = transaction.staging();
+  std::vector<std::string> names;
+  for (const auto& f : c.fits) {
+    const fs::path sub = out / f.model;
+    std::error_code ec;
+    fs::create_directory(sub, ec);
+    if (ec)
+      throw std::runtime_error("cannot create " + (fs::path(dir) / f.model).string() + ": " +
+                               ec.message());
+    for (const auto& w : write_report_files(sub, f, d))
+      names.push_back((fs::path(f.model) / w).string());
+  }
+  write_staged_file(out / "compare.json",
+                    compare_json(c).dump(2, ' ', false, ojson::error_handler_t::replace) + "\n");
+  names.push_back("compare.json");
 
-  const std::vector<std::string> plots =
-      render_svgs(out, [&](const fs::path& work, std::string& script) {
-        std::vector<std::string> expected;
-        if (c.fits.empty()) return expected;
-        std::vector<std::size_t> order(d.rows());
-        std::iota(order.begin(), order.end(), 0);
-        const auto& eps = c.fits.front().eps;
-        std::stable_sort(order.begin(), order.end(),
-                         [&](std::size_t a, std::size_t b) { return eps[a] < eps[b]; });
-        for (Channel ch : c.fits.front().channels) {
-          const int ci = static_cast<int>(ch);
-          const std::string data = fmt::format("compare_{}.dat", channel_name(ch));
-          std::ofstream f(work / data, std::ios::binary);
-          std::size_t n = 0;
-          for (std::size_t i : order) {
-            if (!d.present[ci][i] || !(eps[i] > 0.0) || !std::isfinite(eps[i])) continue;
-            const double s = collapse_factor(d, ch, i);
-            f << fmt::format("{:.9g} {:.9g}", eps[i], d.value[ci][i] * s);
-            for (const auto& fit : c.fits) f << fmt::format(" {:.9g}", fit.fitted[ci][i] * s);
-            f << "\n";
-            ++n;
-          }
-          if (n == 0) continue;
-          const std::string file = fmt::format("compare_{}.svg", channel_name(ch));
-          script += fmt::format(
-              "reset\nset output '{}'\nset logscale x\nset grid\nset key outside bottom center "
-              "horizontal\nset xlabel 'eps = v/(|omega| R)'\nset ylabel '{} / {}'\n"
-              "set title \"{}: measured and every model (divided by load and parity sign)\"\n"
-              "plot '{}' using 1:2 with points pt 7 ps 0.4 lc rgb '#555555' title 'measured'",
-              file, channel_name(ch), ch == Channel::T_x || ch == Channel::T_y ? "N" : "(N R)",
-              channel_name(ch), data);
-          const char* colors[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd"};
-          for (std::size_t k = 0; k < c.fits.size(); ++k)
-            script += fmt::format(
-                ", \\\n  '{}' using 1:{} with points pt 6 ps 0.5 lc rgb '{}' title '{}'", data,
-                k + 3, colors[k % 4], c.fits[k].model);
-          script += "\n";
-          expected.push_back(file);
-        }
-        return expected;
-      });
-  write_file_atomically((out / "compare.md").string(), compare_markdown(c, plots));
-  written.push_back((out / "compare.md").string());
-  for (const auto& p : plots) written.push_back((out / p).string());
+  const std::vector<ReportPlot> plot_list = compare_plots(c, d);
+  std::vector<std::string> plots;
+  for (const auto& p : plot_list) plots.push_back(p.file);
+  write_staged_pages(out, "compare", compare_markdown(c, plots), compare_html_page(c, plot_list),
+                     plot_list, names);
+  transaction.commit();
+  std::vector<std::string> written;
+  for (const auto& n : names) written.push_back((fs::path(dir) / n).string());
   return written;
 }
 

@@ -1,8 +1,9 @@
-#include "io/dataset_csv.hpp"
+#include <frictionid/io/dataset_csv.hpp>
 
 #include <libfccp/csv.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstring>
@@ -12,12 +13,16 @@
 #include <string_view>
 #include <vector>
 
-#include "io/input_error.hpp"
-#include "io/option_parsers.hpp"
+#include <frictionid/io/input_error.hpp>
+#include "io/encoding_sniffer.hpp"
+#include "io/text.hpp"
 
 namespace frictionid {
 
 namespace {
+
+using text::misspelling_distance;
+using text::shown;
 
 // The canonical columns, in the order used for slots below.
 enum Slot : int {
@@ -62,55 +67,6 @@ using QuotePolicy = io::double_quote_escape<',', '"'>;
 using TrimPolicy = io::trim_chars<' ', '\t'>;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// The text quoted for a message, cut at 60 bytes; control characters other than tab (e.g. a CR)
-// are shown as \xNN so that the message stays one readable line.
-std::string shown(std::string_view text) {
-  constexpr std::size_t kMax = 60;
-  std::string out = "'";
-  for (const char c : text.substr(0, kMax)) {
-    const auto u = static_cast<unsigned char>(c);
-    if ((u < 0x20 && c != '\t') || u == 0x7f) {
-      static constexpr char kHex[] = "0123456789abcdef";
-      out += {'\\', 'x', kHex[u >> 4], kHex[u & 15]};
-    } else {
-      out += c;
-    }
-  }
-  return out + (text.size() > kMax ? "...'" : "'");
-}
-
-char lower(char c) {
-  return static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-}
-
-// Case-insensitive optimal string alignment distance (edits + adjacent transpositions).
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  const std::size_t n = a.size(), m = b.size();
-  std::vector<std::size_t> prev2(m + 1), prev(m + 1), cur(m + 1);
-  for (std::size_t j = 0; j <= m; ++j) prev[j] = j;
-  for (std::size_t i = 1; i <= n; ++i) {
-    cur[0] = i;
-    for (std::size_t j = 1; j <= m; ++j) {
-      const std::size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + cost});
-      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) &&
-          lower(a[i - 2]) == lower(b[j - 1]))
-        cur[j] = std::min(cur[j], prev2[j - 2] + 1);
-    }
-    std::swap(prev2, prev);
-    std::swap(prev, cur);
-  }
-  return prev[m];
-}
-
-// Distance when `candidate` looks like a misspelling of `target` (a case-only difference, one edit
-// for short names, two for names of 6+ characters), else SIZE_MAX.
-std::size_t misspelling_distance(std::string_view candidate, std::string_view target) {
-  const std::size_t d = edit_distance(candidate, target);
-  const std::size_t limit = target.size() >= 6 ? 2 : 1;
-  return d <= limit ? d : std::numeric_limits<std::size_t>::max();
-}
 
 int canonical_slot(std::string_view name) {
   for (int s = 0; s < kSlotCount; ++s)
@@ -211,293 +167,308 @@ std::string describe(const Column& col, int slot) {
   return "'" + col.header + "' (" + kCanonical[slot] + ")";
 }
 
-}  // namespace
-
-ColumnMap parse_column_map(const std::string& spec) {
-  ColumnMap map;
-  std::string_view all(spec);
-  auto trim = [](std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-    return s;
-  };
-  if (trim(all).empty()) return map;
-  const std::string option = "--columns";
-  const std::string expected = "canonical=header[,canonical=header...], e.g. v_x=speed,omega=spin";
-  std::set<std::string> headers;
-  std::size_t pos = 0;
-  while (true) {
-    const std::size_t comma = all.find(',', pos);
-    const std::string_view item = trim(
-        all.substr(pos, comma == std::string_view::npos ? std::string_view::npos : comma - pos));
-    if (item.empty())
-      throw InputError(option, 0, 0, "empty entry in " + shown(spec) + "; expected " + expected);
-    const std::size_t eq = item.find('=');
-    if (eq == std::string_view::npos)
-      throw InputError(
-          option, 0, 0,
-          "missing '=' in " + shown(item) + " (in " + shown(spec) + "); expected " + expected);
-    const std::string canonical(trim(item.substr(0, eq)));
-    const std::string header(trim(item.substr(eq + 1)));
-    if (canonical_slot(canonical) < 0) {
-      std::string hint;
-      std::size_t best = std::numeric_limits<std::size_t>::max();
-      for (int s = 0; s < kSlotCount; ++s)
-        if (const std::size_t d = misspelling_distance(canonical, kCanonical[s]); d < best) {
-          best = d;
-          hint = "; did you mean '" + std::string(kCanonical[s]) + "'?";
-        }
-      throw InputError(option, 0, 0,
-                       "unknown canonical column " + shown(canonical) + " in " + shown(spec) +
-                           hint + " (expected one of: " + canonical_list() + ")");
-    }
-    if (header.empty())
-      throw InputError(
-          option, 0, 0,
-          "empty header name for '" + canonical + "' in " + shown(spec) + "; expected " + expected);
-    if (map.canonical_to_header.count(canonical))
-      throw InputError(option, 0, 0,
-                       "'" + canonical + "' is mapped more than once in " + shown(spec));
-    if (!headers.insert(header).second)
-      throw InputError(
-          option, 0, 0,
-          "header name " + shown(header) + " is mapped to more than one column in " + shown(spec));
-    map.canonical_to_header.emplace(canonical, header);
-    if (comma == std::string_view::npos) break;
-    pos = comma + 1;
-  }
-  return map;
-}
-
-Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns, bool require_channels) {
-  // Which header name each slot is looked up under.
-  Column col[kSlotCount];
+// The header name each slot is looked up under: canonical, or renamed by the column map.
+std::array<Column, kSlotCount> lookup_names(const ColumnMap& columns) {
+  std::array<Column, kSlotCount> col;
   for (int s = 0; s < kSlotCount; ++s) col[s].header = kCanonical[s];
   for (const auto& [canonical, header] : columns.canonical_to_header) {
     const int s = canonical_slot(canonical);
     if (s < 0)
       throw InputError(
-          "--columns", 0, 0,
+          "column map", 0, 0,
           "unknown canonical column '" + canonical + "'; expected one of: " + canonical_list());
     col[s].header = header;
   }
   for (int s = 0; s < kSlotCount; ++s)
     for (int t = s + 1; t < kSlotCount; ++t)
       if (col[s].header == col[t].header)
-        throw InputError("--columns", 0, 0,
+        throw InputError("column map", 0, 0,
                          "header name '" + col[s].header + "' would supply both " + kCanonical[s] +
                              " and " + kCanonical[t] + "; map the other one to a different name");
+  return col;
+}
 
+// What the header says: where each slot's column is, which fields are used, and in what order
+// a row is read.
+struct Header {
+  std::string path;
+  std::array<Column, kSlotCount> col;
+  std::vector<std::string> names;         // the header's fields
+  std::vector<bool> used;                 // per field: a slot reads it
+  std::vector<std::size_t> extra_fields;  // fields kept as text (Dataset::extra_names)
+  std::vector<int> order;                 // the used slots in field order
+  bool has_sigma[kChannelCount] = {};
+  int first_channel_field = std::numeric_limits<int>::max();
+  std::size_t field_count() const { return names.size(); }
+
+  std::string header_list() const {
+    std::string out;
+    for (std::size_t k = 0; k < names.size(); ++k) out += (k ? ", " : "") + shown(names[k]);
+    return out;
+  }
+
+  // The best "did you mean" among the header names not yet used, for the slots [first, last)
+  // that the caller wants matched; sets `column` to the misspelt header column.
+  std::string suggestion(int first, int last, std::size_t& column) const {
+    std::size_t best = std::numeric_limits<std::size_t>::max();
+    int best_slot = -1, best_field = -1;
+    for (int s = first; s < last; ++s) {
+      if (col[s].field >= 0 || (s < kFirstChannel && !kRequiredColumn[s])) continue;
+      for (std::size_t k = 0; k < names.size(); ++k) {
+        if (used[k]) continue;
+        if (const std::size_t d = misspelling_distance(names[k], col[s].header); d < best)
+          best = d, best_slot = s, best_field = static_cast<int>(k);
+      }
+    }
+    if (best_slot < 0) return std::string();
+    column = static_cast<std::size_t>(best_field) + 1;
+    const std::string& name = names[static_cast<std::size_t>(best_field)];
+    if (col[best_slot].header == kCanonical[best_slot])
+      return "; did you mean '" + col[best_slot].header + "'? (column " + std::to_string(column) +
+             " is " + shown(name) + ")";
+    return "; column " + std::to_string(column) + " " + shown(name) + " is close to '" +
+           col[best_slot].header + "' given by the column map for " + kCanonical[best_slot] +
+           ": check the spelling";
+  }
+};
+
+// A carriage return inside a line means CR-only line ends (CRLF's CR is already stripped).
+void reject_carriage_return(const char* line, const std::string& path, std::size_t line_no) {
+  const char* cr = std::strchr(line, '\r');
+  if (!cr) return;
+  const auto column = std::count(line, cr, ',') + 1;
+  throw InputError(path, line_no, static_cast<std::size_t>(column),
+                   line_no == 1
+                       ? "the first line contains a carriage return (CR): the file seems to use "
+                         "CR-only (classic Mac) line ends; expected LF or CRLF line ends"
+                       : "the line contains a carriage return (CR) inside it: the rows seem to "
+                         "use CR-only (classic Mac) line ends; expected LF or CRLF line ends");
+}
+
+// Finds every slot's column in the header fields; duplicates are errors.
+void match_columns(Header& h, const std::vector<std::string_view>& fields) {
+  if (h.field_count() == 1 && h.names[0].empty())
+    throw InputError(h.path, 1, 0,
+                     "header row is empty; expected column names such as v_x,omega,N,R,T_x");
+  if (h.field_count() == 1) {
+    const std::string hint = delimiter_hint(fields);
+    if (!hint.empty())
+      throw InputError(h.path, 1, 1, "header is a single field " + shown(h.names[0]) + hint);
+  }
+  h.used.assign(h.field_count(), false);
+  for (int s = 0; s < kSlotCount; ++s) {
+    for (std::size_t k = 0; k < h.field_count(); ++k) {
+      if (h.names[k] != h.col[s].header) continue;
+      if (h.col[s].field >= 0)
+        throw InputError(h.path, 1, k + 1,
+                         "duplicate column " + describe(h.col[s], s) + " (also column " +
+                             std::to_string(h.col[s].field + 1) + "); expected each column once");
+      h.col[s].field = static_cast<int>(k);
+      h.used[k] = true;
+    }
+  }
+}
+
+// Required columns (all missing ones listed, a likely misspelling pointed at), at least one
+// channel, and no sigma column without its channel.
+void check_columns(const Header& h, const std::vector<std::string_view>& fields,
+                   bool require_channels) {
+  const auto& col = h.col;
+  std::string missing, hint;
+  std::size_t column = 0;
+  for (int s = 0; s < kSlotCount; ++s)
+    if (kRequiredColumn[s] && col[s].field < 0)
+      missing += (missing.empty() ? "" : ", ") + describe(col[s], s);
+  if (!missing.empty()) {
+    hint = h.suggestion(0, kFirstChannel, column);
+    if (hint.empty())
+      hint =
+          "; map other header names to the canonical ones with a column map canonical=header "
+          "(e.g. omega=spin)";
+    throw InputError(h.path, 1, column,
+                     "missing required column(s) " + missing + "; the header has " +
+                         h.header_list() + hint + delimiter_hint(fields));
+  }
+  bool any_channel = false;
+  for (int s = kFirstChannel; s < kFirstSigma; ++s) any_channel |= col[s].field >= 0;
+  if (!any_channel && require_channels) {
+    hint = h.suggestion(kFirstChannel, kFirstSigma, column);
+    std::string expected;
+    for (int s = kFirstChannel; s < kFirstSigma; ++s)
+      expected += (s > kFirstChannel ? ", " : "") + describe(col[s], s);
+    throw InputError(h.path, 1, column,
+                     "no measured channel column; expected at least one of " + expected +
+                         "; the header has " + h.header_list() + hint);
+  }
+  for (int s = kFirstSigma; s < kSlotCount; ++s) {
+    const int c = s - kFirstSigma + kFirstChannel;
+    if (col[s].field >= 0 && col[c].field < 0) {
+      hint = h.suggestion(c, c + 1, column);
+      throw InputError(h.path, 1, static_cast<std::size_t>(col[s].field) + 1,
+                       "column " + describe(col[s], s) + " is given but there is no column " +
+                           describe(col[c], c) + " it belongs to; the header has " +
+                           h.header_list() + hint);
+    }
+  }
+}
+
+// Reads and checks the header line; fills the extra column names of `data`.
+Header read_header(char* line, const std::string& path, const ColumnMap& columns,
+                   bool require_channels, std::vector<std::string_view>& fields, Dataset& data) {
+  if (line == nullptr)
+    throw InputError(path, 0, 0,
+                     "empty file; expected a header row such as v_x,v_y,omega,N,R,T_x,T_y,M_z");
+  reject_carriage_return(line, path, 1);
+  Header h;
+  h.path = path;
+  h.col = lookup_names(columns);
+  split_fields(line, fields, path, 1);
+  h.names.assign(fields.begin(), fields.end());
+  match_columns(h, fields);
+  check_columns(h, fields, require_channels);
+  for (std::size_t k = 0; k < h.field_count(); ++k)
+    if (!h.used[k] && !h.names[k].empty()) {
+      h.extra_fields.push_back(k);
+      data.extra_names.push_back(h.names[k]);
+    }
+  data.extra_values.resize(h.extra_fields.size());
+  for (int s = 0; s < kSlotCount; ++s)
+    if (h.col[s].field >= 0) h.order.push_back(s);
+  std::sort(h.order.begin(), h.order.end(),
+            [&](int a, int b) { return h.col[a].field < h.col[b].field; });
+  for (int c = 0; c < kChannelCount; ++c) h.has_sigma[c] = h.col[kFirstSigma + c].field >= 0;
+  for (int s = kFirstChannel; s < kFirstSigma; ++s)
+    if (h.col[s].field >= 0)
+      h.first_channel_field = std::min(h.first_channel_field, h.col[s].field);
+  return h;
+}
+
+// Parses the used fields of one row into value[] and given[] (empty field: not given).
+void parse_row(const Header& h, const std::vector<std::string_view>& fields, std::size_t line_no,
+               double (&value)[kSlotCount], bool (&given)[kSlotCount]) {
+  for (const int s : h.order) {
+    const std::string_view text = fields[static_cast<std::size_t>(h.col[s].field)];
+    const std::size_t column = static_cast<std::size_t>(h.col[s].field) + 1;
+    given[s] = !text.empty();
+    value[s] = kNaN;
+    if (text.empty()) {
+      if (s < kFirstChannel)
+        throw InputError(
+            h.path, line_no, column,
+            "empty field in column " + describe(h.col[s], s) + "; expected " + kMeaning[s]);
+      continue;
+    }
+    if (const char* why = text::parse_double_strict(text, value[s]))
+      throw InputError(h.path, line_no, column,
+                       "column " + describe(h.col[s], s) + " has " + shown(text) + " (" + why +
+                           "); expected a finite decimal number: " + kMeaning[s]);
+    if ((s == kN || s == kR) && !(value[s] > 0))
+      throw InputError(
+          h.path, line_no, column,
+          "column " + describe(h.col[s], s) + " has " + shown(text) + "; expected " + kMeaning[s]);
+  }
+}
+
+// Every measured channel with a sigma column has a sigma > 0, and the row measures something.
+void check_row_channels(const Header& h, const std::vector<std::string_view>& fields,
+                        std::size_t line_no, const double (&value)[kSlotCount],
+                        const bool (&given)[kSlotCount], bool require_channels) {
+  bool any = false;
+  for (int c = 0; c < kChannelCount; ++c) {
+    const int s = kFirstChannel + c;
+    const bool present = h.col[s].field >= 0 && given[s];
+    any |= present;
+    if (!present || !h.has_sigma[c]) continue;
+    const int q = kFirstSigma + c;
+    const std::size_t column = static_cast<std::size_t>(h.col[q].field) + 1;
+    if (!given[q])
+      throw InputError(h.path, line_no, column,
+                       "empty field in column " + describe(h.col[q], q) + " while " +
+                           describe(h.col[s], s) + " is given; expected " + kMeaning[q]);
+    if (!(value[q] > 0))
+      throw InputError(h.path, line_no, column,
+                       "column " + describe(h.col[q], q) + " has " +
+                           shown(fields[static_cast<std::size_t>(h.col[q].field)]) + "; expected " +
+                           kMeaning[q]);
+  }
+  if (!any && require_channels)
+    throw InputError(h.path, line_no, static_cast<std::size_t>(h.first_channel_field) + 1,
+                     "no measured channel in this row; expected a value in at least one of "
+                     "the channel columns");
+}
+
+void append_row(const Header& h, const std::vector<std::string_view>& fields, std::size_t line_no,
+                const double (&value)[kSlotCount], const bool (&given)[kSlotCount], Dataset& data) {
+  data.line.push_back(line_no);
+  data.v_x.push_back(value[kVx]);
+  data.v_y.push_back(h.col[kVy].field >= 0 ? value[kVy] : 0.0);
+  data.omega.push_back(value[kOmega]);
+  data.N.push_back(value[kN]);
+  data.R.push_back(value[kR]);
+  for (int c = 0; c < kChannelCount; ++c) {
+    const int s = kFirstChannel + c;
+    const bool present = h.col[s].field >= 0 && given[s];
+    data.value[c].push_back(present ? value[s] : kNaN);
+    data.present[c].push_back(present ? 1 : 0);
+    if (h.has_sigma[c]) data.sigma[c].push_back(present ? value[kFirstSigma + c] : kNaN);
+  }
+  for (std::size_t k = 0; k < h.extra_fields.size(); ++k)
+    data.extra_values[k].emplace_back(fields[h.extra_fields[k]]);
+}
+
+}  // namespace
+
+const std::vector<std::string>& dataset_column_names() {
+  static const std::vector<std::string> names(std::begin(kCanonical), std::end(kCanonical));
+  return names;
+}
+
+Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns, bool require_channels) {
+  lookup_names(columns);  // a bad column map is an error before the file is touched
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw InputError(path, 0, 0, "is a directory; expected a CSV file");
+
+  if (const std::string hint = unsupported_encoding_hint(file_head(path)); !hint.empty())
+    throw InputError(path, 1, 0, hint);
 
   Dataset data;
   data.source = path;
   try {
     io::LineReader reader(path);
-
-    // ---- header ----
-    char* line = reader.next_line();
-    if (line == nullptr)
-      throw InputError(path, 0, 0,
-                       "empty file; expected a header row such as v_x,v_y,omega,N,R,T_x,T_y,M_z");
-    // A CR left inside the first line means CR-only line ends (CRLF's CR is already stripped).
-    if (const char* cr = std::strchr(line, '\r')) {
-      const auto column = std::count(static_cast<const char*>(line), cr, ',') + 1;
-      throw InputError(path, 1, static_cast<std::size_t>(column),
-                       "the first line contains a carriage return (CR): the file seems to use "
-                       "CR-only (classic Mac) line ends; expected LF or CRLF line ends");
-    }
     std::vector<std::string_view> fields;
     fields.reserve(32);
-    split_fields(line, fields, path, 1);
-    const std::vector<std::string> names(fields.begin(), fields.end());
-    const std::size_t field_count = names.size();
-    if (field_count == 1 && names[0].empty())
-      throw InputError(path, 1, 0,
-                       "header row is empty; expected column names such as v_x,omega,N,R,T_x");
-    if (field_count == 1) {
-      const std::string hint = delimiter_hint(fields);
-      if (!hint.empty())
-        throw InputError(path, 1, 1, "header is a single field " + shown(names[0]) + hint);
-    }
+    const Header h = read_header(reader.next_line(), path, columns, require_channels, fields, data);
 
-    std::vector<bool> used(field_count, false);
-    for (int s = 0; s < kSlotCount; ++s) {
-      for (std::size_t k = 0; k < field_count; ++k) {
-        if (names[k] != col[s].header) continue;
-        if (col[s].field >= 0)
-          throw InputError(path, 1, k + 1,
-                           "duplicate column " + describe(col[s], s) + " (also column " +
-                               std::to_string(col[s].field + 1) + "); expected each column once");
-        col[s].field = static_cast<int>(k);
-        used[k] = true;
-      }
-    }
-
-    auto header_list = [&] {
-      std::string out;
-      for (std::size_t k = 0; k < field_count; ++k) out += (k ? ", " : "") + shown(names[k]);
-      return out;
-    };
-    // The best "did you mean" among the header names not yet used, for the slots [first, last)
-    // that the caller wants matched; sets `column` to the misspelt header column.
-    auto suggestion = [&](int first, int last, std::size_t& column) {
-      std::size_t best = std::numeric_limits<std::size_t>::max();
-      int best_slot = -1, best_field = -1;
-      for (int s = first; s < last; ++s) {
-        if (col[s].field >= 0 || (s < kFirstChannel && !kRequiredColumn[s])) continue;
-        for (std::size_t k = 0; k < field_count; ++k) {
-          if (used[k]) continue;
-          if (const std::size_t d = misspelling_distance(names[k], col[s].header); d < best)
-            best = d, best_slot = s, best_field = static_cast<int>(k);
-        }
-      }
-      if (best_slot < 0) return std::string();
-      column = static_cast<std::size_t>(best_field) + 1;
-      const std::string& name = names[static_cast<std::size_t>(best_field)];
-      if (col[best_slot].header == kCanonical[best_slot])
-        return "; did you mean '" + col[best_slot].header + "'? (column " + std::to_string(column) +
-               " is " + shown(name) + ")";
-      return "; column " + std::to_string(column) + " " + shown(name) + " is close to '" +
-             col[best_slot].header + "' given by --columns for " + kCanonical[best_slot] +
-             ": check the spelling";
-    };
-
-    // Required columns: report all that are missing, point at a likely misspelling.
-    {
-      std::string missing, hint;
-      std::size_t column = 0;
-      for (int s = 0; s < kSlotCount; ++s) {
-        if (!kRequiredColumn[s] || col[s].field >= 0) continue;
-        missing += (missing.empty() ? "" : ", ") + describe(col[s], s);
-      }
-      if (!missing.empty()) hint = suggestion(0, kFirstChannel, column);
-      if (hint.empty())
-        hint = "; map other header names with --columns canonical=header (e.g. omega=spin)";
-      if (!missing.empty())
-        throw InputError(path, 1, column,
-                         "missing required column(s) " + missing + "; the header has " +
-                             header_list() + hint + delimiter_hint(fields));
-    }
-    {
-      bool any_channel = false;
-      for (int s = kFirstChannel; s < kFirstSigma; ++s) any_channel |= col[s].field >= 0;
-      if (!any_channel && require_channels) {
-        std::string hint;
-        std::size_t column = 0;
-        hint = suggestion(kFirstChannel, kFirstSigma, column);
-        std::string expected;
-        for (int s = kFirstChannel; s < kFirstSigma; ++s)
-          expected += (s > kFirstChannel ? ", " : "") + describe(col[s], s);
-        throw InputError(path, 1, column,
-                         "no measured channel column; expected at least one of " + expected +
-                             "; the header has " + header_list() + hint);
-      }
-    }
-    for (int s = kFirstSigma; s < kSlotCount; ++s) {
-      const int c = s - kFirstSigma + kFirstChannel;
-      if (col[s].field >= 0 && col[c].field < 0) {
-        std::size_t column = 0;
-        const std::string hint = suggestion(c, c + 1, column);
-        throw InputError(path, 1, static_cast<std::size_t>(col[s].field) + 1,
-                         "column " + describe(col[s], s) + " is given but there is no column " +
-                             describe(col[c], c) + " it belongs to; the header has " +
-                             header_list() + hint);
-      }
-    }
-
-    // The used slots in field order, so a row is scanned left to right.
-    std::vector<int> order;
-    for (int s = 0; s < kSlotCount; ++s)
-      if (col[s].field >= 0) order.push_back(s);
-    std::sort(order.begin(), order.end(),
-              [&](int a, int b) { return col[a].field < col[b].field; });
-    const bool has_sigma[kChannelCount] = {col[kSigmaTx].field >= 0, col[kSigmaTy].field >= 0,
-                                           col[kSigmaMz].field >= 0, col[kSigmaMroll].field >= 0};
-    int first_channel_field = std::numeric_limits<int>::max();
-    for (int s = kFirstChannel; s < kFirstSigma; ++s)
-      if (col[s].field >= 0) first_channel_field = std::min(first_channel_field, col[s].field);
-
-    // ---- rows ----
     std::error_code size_error;
     const std::uintmax_t file_bytes = std::filesystem::file_size(path, size_error);
     double value[kSlotCount] = {};
     bool given[kSlotCount] = {};
-    while ((line = reader.next_line()) != nullptr) {
+    while (char* line = reader.next_line()) {
       const std::size_t line_no = reader.get_file_line();
+      reject_carriage_return(line, path, line_no);
       const std::size_t length = split_fields(line, fields, path, line_no);
       if (fields.size() == 1 && fields[0].empty()) continue;  // blank line
+      // A bound on memory for an input without end (a pipe, `yes`): about 2 GB of rows.
+      constexpr std::size_t kMaxRows = 20'000'000;
+      if (data.rows() == kMaxRows)
+        throw InputError(path, line_no, 0,
+                         "more than 20000000 rows; expected at most that many (split the data or "
+                         "subsample it)");
       if (data.rows() == 0)
-        reserve_rows(data, estimate_rows(file_bytes, length, field_count), has_sigma);
-      if (fields.size() != field_count) {
-        const bool few = fields.size() < field_count;
-        throw InputError(path, line_no, (few ? fields.size() : field_count) + 1,
+        reserve_rows(data, estimate_rows(file_bytes, length, h.field_count()), h.has_sigma);
+      if (fields.size() != h.field_count()) {
+        const bool few = fields.size() < h.field_count();
+        throw InputError(path, line_no, (few ? fields.size() : h.field_count()) + 1,
                          "row has " + std::to_string(fields.size()) + " fields, expected " +
-                             std::to_string(field_count) + " as in the header" +
+                             std::to_string(h.field_count()) + " as in the header" +
                              (few ? std::string(" (the row ends early)")
-                                  : "; first extra field " + shown(fields[field_count])) +
+                                  : "; first extra field " + shown(fields[h.field_count()])) +
                              delimiter_hint(fields));
       }
-      for (const int s : order) {
-        const std::string_view text = fields[static_cast<std::size_t>(col[s].field)];
-        const std::size_t column = static_cast<std::size_t>(col[s].field) + 1;
-        given[s] = !text.empty();
-        value[s] = kNaN;
-        if (text.empty()) {
-          if (s < kFirstChannel)
-            throw InputError(
-                path, line_no, column,
-                "empty field in column " + describe(col[s], s) + "; expected " + kMeaning[s]);
-          continue;
-        }
-        if (const char* why = parse_double_strict(text, value[s]))
-          throw InputError(path, line_no, column,
-                           "column " + describe(col[s], s) + " has " + shown(text) + " (" + why +
-                               "); expected a finite decimal number: " + kMeaning[s]);
-        if ((s == kN || s == kR) && !(value[s] > 0))
-          throw InputError(path, line_no, column,
-                           "column " + describe(col[s], s) + " has " + shown(text) + "; expected " +
-                               kMeaning[s]);
-      }
-
-      bool any = false;
-      for (int c = 0; c < kChannelCount; ++c) {
-        const int s = kFirstChannel + c;
-        const bool present = col[s].field >= 0 && given[s];
-        any |= present;
-        if (!present || !has_sigma[c]) continue;
-        const int q = kFirstSigma + c;
-        const std::size_t column = static_cast<std::size_t>(col[q].field) + 1;
-        if (!given[q])
-          throw InputError(path, line_no, column,
-                           "empty field in column " + describe(col[q], q) + " while " +
-                               describe(col[s], s) + " is given; expected " + kMeaning[q]);
-        if (!(value[q] > 0))
-          throw InputError(path, line_no, column,
-                           "column " + describe(col[q], q) + " has " +
-                               shown(fields[static_cast<std::size_t>(col[q].field)]) +
-                               "; expected " + kMeaning[q]);
-      }
-      if (!any && require_channels)
-        throw InputError(path, line_no, static_cast<std::size_t>(first_channel_field) + 1,
-                         "no measured channel in this row; expected a value in at least one of "
-                         "the channel columns");
-
-      data.line.push_back(line_no);
-      data.v_x.push_back(value[kVx]);
-      data.v_y.push_back(col[kVy].field >= 0 ? value[kVy] : 0.0);
-      data.omega.push_back(value[kOmega]);
-      data.N.push_back(value[kN]);
-      data.R.push_back(value[kR]);
-      for (int c = 0; c < kChannelCount; ++c) {
-        const int s = kFirstChannel + c;
-        const bool present = col[s].field >= 0 && given[s];
-        data.value[c].push_back(present ? value[s] : kNaN);
-        data.present[c].push_back(present ? 1 : 0);
-        if (has_sigma[c]) data.sigma[c].push_back(present ? value[kFirstSigma + c] : kNaN);
-      }
+      parse_row(h, fields, line_no, value, given);
+      check_row_channels(h, fields, line_no, value, given, require_channels);
+      append_row(h, fields, line_no, value, given, data);
     }
     if (data.rows() == 0)
       throw InputError(path, 1, 0,

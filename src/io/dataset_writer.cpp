@@ -1,4 +1,4 @@
-#include "io/dataset_writer.hpp"
+#include <frictionid/io/dataset_writer.hpp>
 
 #include <fmt/format.h>
 

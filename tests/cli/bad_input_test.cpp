@@ -25,7 +25,7 @@
 #include <thread>
 #include <vector>
 
-#include "io/dataset_csv.hpp"
+#include <frictionid/io/dataset_csv.hpp>
 
 namespace {
 

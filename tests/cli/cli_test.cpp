@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 namespace {
@@ -165,6 +166,80 @@ TEST(Cli, CompareWritesSideBySideReportsAndPrefersTheGeneratingModel) {
     EXPECT_TRUE(fs::exists(d / "cmp" / m / "report.json")) << m;
   EXPECT_TRUE(fs::exists(d / "cmp" / "compare.md"));
   fs::remove_all(d);
+}
+
+// Replaces field `column` (0-based) of data line `line` (1-based, the header is line 1).
+std::string with_field(const std::string& csv, std::size_t line, std::size_t column,
+                       const std::string& value) {
+  std::string out;
+  std::size_t start = 0, n = 0;
+  while (start < csv.size()) {
+    const std::size_t end = csv.find('\n', start);
+    std::string l = csv.substr(start, end - start);
+    if (++n == line) {
+      std::size_t b = 0;
+      for (std::size_t k = 0; k < column; ++k) b = l.find(',', b) + 1;
+      const std::size_t e = l.find(',', b);
+      l = l.substr(0, b) + value + (e == std::string::npos ? "" : l.substr(e));
+    }
+    out += l + "\n";
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return out;
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
+// A failed fit says why in frictionid's own words and names the row; the solver's log (glog's
+// "Logging before InitGoogleLogging", "Error in evaluating the ResidualBlock") stays silent.
+TEST(Cli, AFitThatFailsNamesTheRowAndPrintsNoSolverLog) {
+  const fs::path dir = temp_dir("fail_row");
+  const std::string csv = read_text(fs::path(FRICTIONID_SOURCE_DIR) / "data/example_hertz.csv");
+  const auto header = csv.substr(0, csv.find('\n'));
+  std::size_t sigma_col = 0;
+  for (std::size_t b = 0, k = 0;; ++k) {
+    const std::size_t e = header.find(',', b);
+    if (header.substr(b, e - b) == "sigma_T_x") {
+      sigma_col = k;
+      break;
+    }
+    ASSERT_NE(e, std::string::npos) << "no sigma_T_x column";
+    b = e + 1;
+  }
+  std::ofstream(dir / "d.csv") << with_field(csv, 10, sigma_col, "1e-300");
+  const RunResult r =
+      run("fit " + (dir / "d.csv").string() + " --model seed --report " + (dir / "rep").string());
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find("line 10"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("channel T_x"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("InitGoogleLogging"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("ResidualBlock"), std::string::npos) << r.out;
+  fs::remove_all(dir);
+}
+
+// One wild value does not switch its channel off in silence: the report names its row.
+TEST(Cli, AnOutlierRowIsNamedInTheReport) {
+  const fs::path dir = temp_dir("outlier");
+  ASSERT_EQ(run("generate --model seed --pressure hertz --param f=0.9,kappa=1.2,h=0.1 --rows 400 "
+                "--noise 0.01 --seed 5 --output " +
+                (dir / "d.csv").string())
+                .code,
+            0);
+  std::ofstream(dir / "o.csv") << with_field(read_text(dir / "d.csv"), 42, 5, "1e12");
+  const RunResult r =
+      run("fit " + (dir / "o.csv").string() + " --model seed --report " + (dir / "rep").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(read_text(dir / "rep" / "report.json"));
+  bool named = false;
+  for (const auto& w : j["warnings"])
+    named |= w.get<std::string>().find("at line 42 (T_x = 1e+12") != std::string::npos &&
+             w.get<std::string>().find("outlier") != std::string::npos;
+  EXPECT_TRUE(named) << j["warnings"].dump(2);
+  fs::remove_all(dir);
 }
 
 }  // namespace

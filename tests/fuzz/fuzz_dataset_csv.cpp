@@ -8,9 +8,10 @@
 #include <string>
 #include <string_view>
 
+#include <frictionid/io/dataset_csv.hpp>
+#include <frictionid/io/input_error.hpp>
+#include "cli/option_parsers.hpp"
 #include "fuzz_support.hpp"
-#include "io/dataset_csv.hpp"
-#include "io/input_error.hpp"
 
 namespace {
 

@@ -7,11 +7,12 @@
 #include <cstring>
 #include <string>
 
+#include <frictionid/io/dataset_csv.hpp>
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/io/pressure_law_reader.hpp>
+#include "cli/option_parsers.hpp"
 #include "fuzz_support.hpp"
-#include "io/dataset_csv.hpp"
-#include "io/input_error.hpp"
-#include "io/option_parsers.hpp"
-#include "io/pressure_spec.hpp"
+#include "io/text.hpp"
 
 namespace {
 
@@ -73,12 +74,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     // Accepted numbers are finite and round-trip bit-identically through %.17g.
     double x = 0;
-    if (frictionid::parse_double_strict(text, x) == nullptr) {
+    if (frictionid::text::parse_double_strict(text, x) == nullptr) {
       FRICTIONID_FUZZ_CHECK(std::isfinite(x));
       char buf[64];
       std::snprintf(buf, sizeof buf, "%.17g", x);
       double y = 0;
-      FRICTIONID_FUZZ_CHECK(frictionid::parse_double_strict(buf, y) == nullptr);
+      FRICTIONID_FUZZ_CHECK(frictionid::text::parse_double_strict(buf, y) == nullptr);
       FRICTIONID_FUZZ_CHECK(std::memcmp(&x, &y, sizeof x) == 0);
     }
   }

@@ -1,11 +1,11 @@
-#include "identify/fitter.hpp"
+#include <frictionid/fitter.hpp>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "identify/synthetic_data.hpp"
-#include "io/report_writer.hpp"
+#include <frictionid/io/report_writer.hpp>
+#include <frictionid/synthetic_data.hpp>
 
 namespace frictionid {
 namespace {
@@ -27,18 +27,10 @@ std::array<double, kParamCount> truth_params(const Law& law) {
   return p;
 }
 
-FitSettings settings_for(ModelKind kind, const Law& law) {
-  FitSettings s;
-  s.model = kind;
-  s.law = law;
-  s.params = default_parameter_settings(law);
-  return s;
-}
-
 void expect_recovery(ModelKind kind, const Law& law, const std::array<double, kParamCount>& truth,
                      double digits) {
   const Dataset d = generate_dataset(kind, law, truth, SyntheticDesign{}, NoiseSpec{}, 5);
-  const FitResult r = Fitter(settings_for(kind, law)).fit(d);
+  const FitResult r = Fitter(FitSettings::defaults(kind, law, "law")).fit(d);
   for (const auto& p : r.parameters) {
     const int i = *param_index(p.name);
     EXPECT_GE(matched_digits(p.value, truth[i]), digits) << p.name << " = " << p.value;
@@ -60,7 +52,8 @@ TEST(Fitter, NoiseFreeExactDataRecoversFrictionTiltAndPressureExponentToEightDig
   SyntheticDesign design;
   design.rows = 200;
   const Dataset d = generate_dataset(ModelKind::Exact, law, truth, design, NoiseSpec{}, 5);
-  FitSettings s = settings_for(ModelKind::Exact, Law::power(1.0));  // n starts elsewhere
+  FitSettings s =
+      FitSettings::defaults(ModelKind::Exact, Law::power(1.0), "law");  // n starts elsewhere
   const FitResult r = Fitter(s).fit(d);
   ASSERT_EQ(r.parameters.size(), 4u);
   for (const auto& p : r.parameters)
@@ -74,7 +67,7 @@ void expect_within_four_standard_errors(ModelKind kind, const Law& law,
   design.rows = 300;
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     const Dataset d = generate_dataset(kind, law, truth, design, NoiseSpec{0.01, 0.0, false}, seed);
-    FitSettings s = settings_for(kind, law);
+    FitSettings s = FitSettings::defaults(kind, law, "law");
     s.seed = seed;
     const FitResult r = Fitter(s).fit(d);
     for (const auto& p : r.parameters) {
@@ -104,7 +97,7 @@ TEST(Fitter, DataWithoutLateralForceOrRollingTorqueNamesHAndBAsUndetermined) {
   const Law law = Law::hertz();
   const Dataset d =
       generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{}, NoiseSpec{}, 5);
-  FitSettings s = settings_for(ModelKind::Seed, law);
+  FitSettings s = FitSettings::defaults(ModelKind::Seed, law, "law");
   s.channels = {Channel::T_x, Channel::M_z};
   const FitResult r = Fitter(s).fit(d);
   bool warned = false;
@@ -124,7 +117,7 @@ TEST(Fitter, AParameterPinnedAtABoundIsFlagged) {
   const Law law = Law::hertz();
   const Dataset d =
       generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{}, NoiseSpec{}, 5);
-  FitSettings s = settings_for(ModelKind::Seed, law);
+  FitSettings s = FitSettings::defaults(ModelKind::Seed, law, "law");
   s.params[kF].upper = 0.8;  // truth 0.85 lies outside
   const FitResult r = Fitter(s).fit(d);
   for (const auto& p : r.parameters)
@@ -138,7 +131,7 @@ TEST(Fitter, FixedParametersKeepTheirValueAndHaveNoStandardError) {
   const auto truth = truth_params(law);
   const Dataset d =
       generate_dataset(ModelKind::Seed, law, truth, SyntheticDesign{}, NoiseSpec{}, 5);
-  FitSettings s = settings_for(ModelKind::Seed, law);
+  FitSettings s = FitSettings::defaults(ModelKind::Seed, law, "law");
   s.params[kKappa].fixed = true;
   s.params[kKappa].initial = truth[kKappa];
   const FitResult r = Fitter(s).fit(d);
@@ -154,7 +147,7 @@ TEST(Fitter, SameInputAndSeedGiveAByteIdenticalReport) {
   const Law law = Law::hertz();
   const Dataset d = generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{},
                                      NoiseSpec{0.01, 0.0, false}, 9);
-  const FitSettings s = settings_for(ModelKind::Seed, law);
+  const FitSettings s = FitSettings::defaults(ModelKind::Seed, law, "law");
   const std::string a = report_json(Fitter(s).fit(d)).dump(2);
   const std::string b = report_json(Fitter(s).fit(d)).dump(2);
   EXPECT_EQ(a, b);
@@ -167,7 +160,7 @@ TEST(Fitter, ReportIsByteIdenticalWithOneOrTwoSolverThreads) {
   design.rows = 6000;  // several residual blocks, so two threads really split the work
   const Dataset d = generate_dataset(ModelKind::Seed, law, truth_params(law), design,
                                      NoiseSpec{0.01, 0.0, false}, 21);
-  FitSettings s = settings_for(ModelKind::Seed, law);
+  FitSettings s = FitSettings::defaults(ModelKind::Seed, law, "law");
   s.global_evaluations = 300;
   s.threads = 1;
   const std::string one = report_json(Fitter(s).fit(d)).dump(2);
@@ -183,7 +176,7 @@ TEST(Fitter, RobustLossesOnNoiseFreeDataConvergeToTheTruth) {
   const Dataset d =
       generate_dataset(ModelKind::Seed, law, truth, SyntheticDesign{}, NoiseSpec{}, 5);
   for (LossKind loss : {LossKind::Huber, LossKind::Cauchy, LossKind::SoftL1}) {
-    FitSettings s = settings_for(ModelKind::Seed, law);
+    FitSettings s = FitSettings::defaults(ModelKind::Seed, law, "law");
     s.loss = loss;
     const FitResult r = Fitter(s).fit(d);
     EXPECT_TRUE(r.solver.converged) << r.solver.termination;
@@ -200,7 +193,7 @@ TEST(Fitter, LargeDataRefinesTheBestSubsampleFitOnAllRows) {
   SyntheticDesign design;
   design.rows = 5000;
   const Dataset d = generate_dataset(ModelKind::Seed, law, truth, design, NoiseSpec{}, 8);
-  FitSettings s = settings_for(ModelKind::Seed, law);
+  FitSettings s = FitSettings::defaults(ModelKind::Seed, law, "law");
   s.global_subsample = 300;
   const FitResult r = Fitter(s).fit(d);
   EXPECT_TRUE(r.global.local_fits_on_subsample);
@@ -218,7 +211,7 @@ TEST(Fitter, ANonFiniteModelAtEveryStartIsAFitErrorNotAResult) {
       generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{}, NoiseSpec{}, 5);
   d.N[17] = std::nan("");
   for (bool global : {true, false}) {
-    FitSettings s = settings_for(ModelKind::Seed, law);
+    FitSettings s = FitSettings::defaults(ModelKind::Seed, law, "law");
     s.global = global;
     EXPECT_THROW(Fitter(s).fit(d), FitError) << "global stage " << global;
   }
@@ -229,13 +222,127 @@ TEST(Fitter, RequestedChannelThatNoRowMeasuresIsReportedNotFitted) {
   Dataset d =
       generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{}, NoiseSpec{}, 5);
   for (auto& p : d.present[static_cast<int>(Channel::M_roll)]) p = 0;
-  FitSettings s = settings_for(ModelKind::Seed, law);
+  FitSettings s = FitSettings::defaults(ModelKind::Seed, law, "law");
   s.channels = {Channel::T_x, Channel::T_y, Channel::M_z, Channel::M_roll};
   const FitResult r = Fitter(s).fit(d);
   EXPECT_EQ(r.channels.size(), 3u);
   bool warned = false;
   for (const auto& w : r.warnings) warned |= w.find("M_roll") != std::string::npos;
   EXPECT_TRUE(warned);
+}
+
+// The failed fit says where the model stopped being finite, so the user can find the row.
+TEST(Fitter, AFitErrorNamesTheFirstRowAndChannelWhereTheModelIsNotFinite) {
+  const Law law = Law::hertz();
+  Dataset d =
+      generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{}, NoiseSpec{}, 5);
+  d.line.resize(d.rows());
+  for (std::size_t i = 0; i < d.rows(); ++i) d.line[i] = i + 2;  // a header on line 1
+  d.source = "rig.csv";
+  d.N[17] = std::nan("");
+  FitSettings s = FitSettings::defaults(ModelKind::Seed, law, "law");
+  s.global = false;
+  try {
+    Fitter(s).fit(d);
+    ADD_FAILURE() << "no FitError";
+  } catch (const FitError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 19 of rig.csv, channel T_x"), std::string::npos)
+        << e.what();
+  }
+}
+
+// Records what the fit reports and cancels after a given number of progress calls.
+class CountingObserver : public FitObserver {
+ public:
+  explicit CountingObserver(int cancel_after) : cancel_after_(cancel_after) {}
+  void on_progress(const FitProgress& p) override {
+    ++calls;
+    if (p.stage == FitStage::GlobalSearch) ++global_calls;
+    if (p.stage == FitStage::LocalFit) ++local_calls;
+  }
+  void on_log(const std::string& line) override { logs += line; }
+  bool cancelled() const override { return cancel_after_ >= 0 && calls >= cancel_after_; }
+  int calls = 0, global_calls = 0, local_calls = 0;
+  std::string logs;
+
+ private:
+  int cancel_after_;
+};
+
+TEST(Fitter, TheObserverSeesBothStagesAndTheSolverReport) {
+  const Law law = Law::hertz();
+  const Dataset d =
+      generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{}, NoiseSpec{}, 5);
+  CountingObserver observer(-1);
+  Fitter(FitSettings::defaults(ModelKind::Seed, law, "law")).fit(d, &observer);
+  EXPECT_GT(observer.global_calls, 0);
+  EXPECT_GT(observer.local_calls, 0);
+  EXPECT_NE(observer.logs.find("Solver Summary"), std::string::npos);
+}
+
+TEST(Fitter, AnObserverThatCancelsStopsTheFitWithInterrupted) {
+  const Law law = Law::hertz();
+  const Dataset d =
+      generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{}, NoiseSpec{}, 5);
+  for (int after : {1, 3}) {
+    CountingObserver observer(after);
+    try {
+      Fitter(FitSettings::defaults(ModelKind::Seed, law, "law")).fit(d, &observer);
+      ADD_FAILURE() << "not cancelled";
+    } catch (const FitError& e) {
+      EXPECT_STREQ(e.what(), "interrupted");
+    }
+    EXPECT_LE(observer.calls, after + 1);  // stops at the next check
+  }
+}
+
+// With sigma columns a channel that is zero in every row is fitted and said to be zero, not taken
+// for noise growing with the signal (its residuals equal the predictions: rank correlation 1).
+TEST(Fitter, AChannelThatIsZeroInEveryRowGetsItsOwnWarningNotTheGrowthWarning) {
+  const Law law = Law::hertz();
+  Dataset d = generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{},
+                               NoiseSpec{0.01, 0.0, true}, 5);
+  for (auto& v : d.value[static_cast<int>(Channel::T_y)]) v = 0.0;
+  for (auto& v : d.sigma[static_cast<int>(Channel::T_y)]) v = 1.0;
+  const FitResult r = Fitter(FitSettings::defaults(ModelKind::Seed, law, "law")).fit(d);
+  bool zero = false, growth_names_ty = false;
+  for (const auto& w : r.warnings) {
+    zero |= w.find("every measured value of T_y is zero") != std::string::npos;
+    growth_names_ty |= w.find("grow with the measured magnitude") != std::string::npos &&
+                       w.find("T_y") != std::string::npos;
+  }
+  EXPECT_TRUE(zero);
+  EXPECT_FALSE(growth_names_ty);
+}
+
+// Without sigma columns the noise of a channel that never varies cannot be estimated: it is left
+// out of the fit, with a warning, and its rows do not count as observations.
+TEST(Fitter, AConstantChannelIsLeftOutOfTheFitAndOfTheDegreesOfFreedom) {
+  const Law law = Law::hertz();
+  Dataset d = generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{},
+                               NoiseSpec{0.01, 0.0, false}, 5);
+  const FitResult all = Fitter(FitSettings::defaults(ModelKind::Seed, law, "law")).fit(d);
+  for (auto& v : d.value[static_cast<int>(Channel::T_y)]) v = 0.0;
+  const FitResult r = Fitter(FitSettings::defaults(ModelKind::Seed, law, "law")).fit(d);
+  EXPECT_EQ(r.channels, (std::vector<Channel>{Channel::T_x, Channel::M_z, Channel::M_roll}));
+  EXPECT_EQ(r.residuals, all.residuals - d.rows());
+  EXPECT_EQ(r.dof, r.residuals - 6);
+  bool warned = false;
+  for (const auto& w : r.warnings)
+    warned |= w.find("every measured value of T_y is the same") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
+TEST(Fitter, ResultsAreFoundByParameterName) {
+  const Law law = Law::hertz();
+  const auto truth = truth_params(law);
+  const Dataset d =
+      generate_dataset(ModelKind::Seed, law, truth, SyntheticDesign{}, NoiseSpec{}, 5);
+  const FitResult r = Fitter(FitSettings::defaults(ModelKind::Seed, law, "law")).fit(d);
+  EXPECT_EQ(r.model_kind, ModelKind::Seed);
+  ASSERT_NE(r.parameter("kappa"), nullptr);
+  EXPECT_GE(matched_digits(r.parameter("kappa")->value, truth[kKappa]), 10.0);
+  EXPECT_EQ(r.parameter("n"), nullptr);  // the seed model has no exponent
 }
 
 }  // namespace

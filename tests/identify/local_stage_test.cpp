@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "identify/synthetic_data.hpp"
+#include <frictionid/synthetic_data.hpp>
 
 namespace frictionid {
 namespace {

@@ -1,25 +1,17 @@
-#include "identify/model_comparison.hpp"
+#include <frictionid/model_comparison.hpp>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "identify/fit_result.hpp"
-#include "identify/fitter.hpp"
-#include "identify/synthetic_data.hpp"
+#include <frictionid/fit_result.hpp>
+#include <frictionid/fitter.hpp>
+#include <frictionid/synthetic_data.hpp>
 
 namespace frictionid {
 namespace {
 
 using Law = model::PressureLaw<double>;
-
-FitSettings settings_for(ModelKind kind, const Law& law) {
-  FitSettings s;
-  s.model = kind;
-  s.law = law;
-  s.params = default_parameter_settings(law);
-  return s;
-}
 
 // Exact-model data with 0.2 % noise: the closed forms cannot follow the integral model's shape,
 // so their residuals ordered by eps form long runs (lag-1 correlation near 1) while the exact
@@ -31,9 +23,10 @@ TEST(ModelComparison, ClosedFormsLeaveASystematicResidualOnExactDataAndAicPrefer
   design.rows = 400;
   const Dataset d =
       generate_dataset(ModelKind::Exact, law, truth, design, NoiseSpec{0.002, 0.0, false}, 11);
-  const ModelComparison c = compare_models(
-      d, {settings_for(ModelKind::Seed, law), settings_for(ModelKind::Corrected, law),
-          settings_for(ModelKind::Exact, law)});
+  const ModelComparison c =
+      compare_models(d, {FitSettings::defaults(ModelKind::Seed, law, "law"),
+                         FitSettings::defaults(ModelKind::Corrected, law, "law"),
+                         FitSettings::defaults(ModelKind::Exact, law, "law")});
   ASSERT_EQ(c.fits.size(), 3u);
   EXPECT_EQ(c.preferred_by_aic, "exact");
   EXPECT_EQ(c.preferred_by_bic, "exact");
@@ -64,7 +57,7 @@ TEST(ModelComparison, SeedFitToExactDataLeavesThePredictedShapeResidual) {
   design.eps_min = 1e-3;
   design.eps_max = 1e3;
   const Dataset d = generate_dataset(ModelKind::Exact, law, truth, design, NoiseSpec{}, 3);
-  FitSettings s = settings_for(ModelKind::Seed, law);
+  FitSettings s = FitSettings::defaults(ModelKind::Seed, law, "law");
   s.channels = {Channel::T_x};
   const double a = std::pow(8.0 / (3.0 * M_PI), 2);  // (2 m1/m0)^2 for Hertz
   for (int i : {kKappa, kH, kA, kB, kM}) s.params[i].fixed = true;
@@ -89,7 +82,7 @@ TEST(ModelComparison, SeedFitToExactDataLeavesThePredictedShapeResidual) {
   }
   EXPECT_NEAR(low_end / c, 1.0, 1e-3);  // both ends: slopes matched (a from the law)
   EXPECT_NEAR(high_end / c, 1.0, 1e-3);
-  EXPECT_NEAR(dip / c, 1.0 - 0.139, 0.005);  // tens of percent in between (physics.md §3)
+  EXPECT_NEAR(dip / c, 1.0 - 0.139, 0.005);  // tens of percent in between (docs/physics.md §3)
   EXPECT_GT(dip_eps, 0.6);
   EXPECT_LT(dip_eps, 1.3);
 }
@@ -103,7 +96,7 @@ TEST(ModelComparison, SlipInSeveralDirectionsIdentifiesKappaWithoutTorque) {
   design.slip_angles = {0.0, 0.5, 1.0, 1.4};
   const Dataset d =
       generate_dataset(ModelKind::Exact, law, truth, design, NoiseSpec{0.005, 0.0, false}, 4);
-  FitSettings s = settings_for(ModelKind::Exact, law);
+  FitSettings s = FitSettings::defaults(ModelKind::Exact, law, "law");
   s.channels = {Channel::T_x, Channel::T_y};
   s.params[kH].fixed = true;  // no torque channel carries the tilt's own signature here
   s.params[kH].initial = 0.0;
@@ -123,7 +116,7 @@ TEST(ModelComparison, AlignedSlipWithoutTorqueLeavesKappaUndetermined) {
   SyntheticDesign design;
   design.rows = 200;
   const Dataset d = generate_dataset(ModelKind::Exact, law, truth, design, NoiseSpec{}, 4);
-  FitSettings s = settings_for(ModelKind::Exact, law);
+  FitSettings s = FitSettings::defaults(ModelKind::Exact, law, "law");
   s.channels = {Channel::T_x};
   s.params[kH].fixed = true;
   s.params[kH].initial = 0.0;

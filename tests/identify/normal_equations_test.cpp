@@ -69,5 +69,26 @@ TEST(NormalEquations, ResidualsInTheRangeOfTheJacobianLeaveNoRemainder) {
   EXPECT_NEAR(f.w.norm(), r.norm(), 1e-12 * r.norm());
 }
 
+// A second view of the rank-deficient case: the minimum-norm Gauss-Newton step of the small
+// problem, solved by a complete orthogonal decomposition, is the tall problem's minimum-norm
+// step, -pinv(J) r, even with a null direction that is not along one parameter.
+TEST(NormalEquations, RankDeficientSquareRootFormGivesTheTallProblemsMinimumNormStep) {
+  std::mt19937_64 rng(29);
+  std::normal_distribution<double> n01;
+  Eigen::MatrixXd j(200, 5);
+  Eigen::VectorXd r(200);
+  for (Eigen::Index i = 0; i < j.rows(); ++i) {
+    r[i] = n01(rng);
+    for (Eigen::Index k = 0; k < 3; ++k) j(i, k) = n01(rng);
+    j(i, 3) = j(i, 0) + 0.5 * j(i, 2);   // null direction (1, 0, 0.5, -1, 0)
+    j(i, 4) = -3.0 * j(i, 1) + j(i, 2);  // and (0, -3, 1, 0, -1)
+  }
+  const SquareRootForm f = square_root_form(from_rows(j, r));
+  const Eigen::VectorXd tall = -j.completeOrthogonalDecomposition().solve(r);
+  const Eigen::VectorXd small = -f.a.completeOrthogonalDecomposition().solve(f.w);
+  EXPECT_LE((small - tall).norm(), 1e-9 * tall.norm()) << small.transpose() << "\n"
+                                                       << tall.transpose();
+}
+
 }  // namespace
 }  // namespace frictionid

@@ -6,8 +6,8 @@
 #include <random>
 #include <string>
 
-#include "identify/fitter.hpp"
-#include "identify/synthetic_data.hpp"
+#include <frictionid/fitter.hpp>
+#include <frictionid/synthetic_data.hpp>
 
 namespace frictionid {
 namespace {
@@ -33,27 +33,29 @@ TEST(RankCorrelation, IndependentSamplesStayWithinFourStandardErrorsOfZero) {
   EXPECT_LT(std::fabs(rank_correlation(a, b)), 4.0 / std::sqrt(n - 1.0));
 }
 
-bool warns_of_growth(const NoiseSpec& noise) {
+bool warns_of_growth(const NoiseSpec& noise, NoiseModelKind model = NoiseModelKind::Auto) {
   using Law = model::PressureLaw<double>;
   const Law law = Law::hertz();
   auto truth = default_parameters(law, 0.85, 1.3, 0.12);
   const Dataset d = generate_dataset(ModelKind::Seed, law, truth, SyntheticDesign{}, noise, 3);
-  FitSettings s;
-  s.model = ModelKind::Seed;
-  s.law = law;
-  s.params = default_parameter_settings(law);
+  FitSettings s = FitSettings::defaults(ModelKind::Seed, law, "hertz");
   s.global_evaluations = 500;
+  s.noise_model = model;
   const FitResult r = Fitter(s).fit(d);
   for (const auto& w : r.warnings)
     if (w.find("grow with the measured magnitude") != std::string::npos) return true;
   return false;
 }
 
-TEST(ResidualGrowth, ProportionalNoiseWithoutSigmaColumnsIsWarnedOf) {
-  EXPECT_TRUE(warns_of_growth(NoiseSpec{0.01, 0.0, false}));
+// A constant noise model cannot follow noise proportional to the signal: that is warned of.
+TEST(ResidualGrowth, ProportionalNoiseUnderAConstantNoiseModelIsWarnedOf) {
+  EXPECT_TRUE(warns_of_growth(NoiseSpec{0.01, 0.0, false}, NoiseModelKind::Constant));
 }
 
-TEST(ResidualGrowth, NoWarningWithSigmaColumnsOrForNoiseFreeData) {
+// The default noise model (auto) follows it, and sigma columns state it: no warning then.
+TEST(ResidualGrowth, NoWarningWhereTheNoiseModelOrSigmaColumnsTakeCareOfIt) {
+  EXPECT_FALSE(warns_of_growth(NoiseSpec{0.01, 0.0, false}));
+  EXPECT_FALSE(warns_of_growth(NoiseSpec{0.01, 0.0, false}, NoiseModelKind::Relative));
   EXPECT_FALSE(warns_of_growth(NoiseSpec{0.01, 0.0, true}));
   EXPECT_FALSE(warns_of_growth(NoiseSpec{}));
 }

@@ -77,5 +77,19 @@ TEST(Residuals, WhiteningDividesByTheSigmaColumnOrTheChannelScale) {
   EXPECT_DOUBLE_EQ(r[1], (pred.T_y - 1.0) / 4.0);
 }
 
+// The Cauchy loss switches to a series of log1p(x)/x below x = s/c^2 = 1e-3: its value must be
+// c^2 log1p(s/c^2) on both sides of the switch, to rounding (the series' first omitted term,
+// x^5/6, is below 2e-16 there).
+TEST(Residuals, CauchyLossEqualsItsFormulaOnBothSidesOfTheSeriesSwitch) {
+  const double c = 2.0;
+  for (double x : {1e-9, 1e-6, 1e-4, 5e-4, 1e-3 * (1 - 1e-9), 1e-3, 1e-3 * (1 + 1e-9), 2e-3}) {
+    const double s = x * c * c;
+    const double expected = c * c * std::log1p(x);
+    const double f = robust_row_factor(s, LossKind::Cauchy, c);
+    EXPECT_NEAR(f * f * s, expected, 1e-14 * expected) << "x = " << x;
+    EXPECT_NEAR(robust_rho(s, LossKind::Cauchy, c), expected, 1e-14 * expected) << "x = " << x;
+  }
+}
+
 }  // namespace
 }  // namespace frictionid

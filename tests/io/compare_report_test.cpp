@@ -1,4 +1,4 @@
-#include "io/compare_report.hpp"
+#include <frictionid/io/compare_report.hpp>
 
 #include <gtest/gtest.h>
 

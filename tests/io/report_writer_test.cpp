@@ -1,4 +1,4 @@
-#include "io/report_writer.hpp"
+#include <frictionid/io/report_writer.hpp>
 
 #include <gtest/gtest.h>
 
@@ -227,7 +227,7 @@ TEST(ReportJson, HasEveryDesignKeyInOrder) {
   for (auto it = j.begin(); it != j.end(); ++it) top.push_back(it.key());
   EXPECT_EQ(top, (std::vector<std::string>{"model", "pressure", "rows", "channels", "parameters",
                                            "correlation", "statistics", "global_search", "solver",
-                                           "warnings"}));
+                                           "warnings", "interval_method", "bootstrap_replicates"}));
   for (const char* k :
        {"value", "stderr", "ci95", "fixed", "at_bound", "initial", "lower", "upper"})
     EXPECT_TRUE(j["parameters"]["f"].contains(k)) << k;
@@ -351,15 +351,30 @@ TEST(ReportMarkdown, HasTitleTableNotesWarningsCorrelationAndLinks) {
   const std::string md = report_markdown(r);
 
   EXPECT_NE(md.find("# frictionid fit: model corrected, pressure hertz"), std::string::npos);
-  EXPECT_NE(md.find("| kappa | 1.25 ± 0.0625 | [1.125, 1.375] | 1 | [0.1, 10] |"),
+  EXPECT_NE(md.find("| kappa | 1.25 ± 0.0625 | [1.125, 1.375] | — | 1 | [0.1, 10] |"),
             std::string::npos)
       << md;
   EXPECT_NE(md.find("| f | 0.3125 ± 0.00390625 |"), std::string::npos) << md;
   EXPECT_NE(md.find("[0, +inf]"), std::string::npos) << md;
   EXPECT_NE(md.find("| fixed |"), std::string::npos);
   EXPECT_NE(md.find("| at bound (stderr not meaningful) |"), std::string::npos);
-  EXPECT_NE(md.find("| m | 7.5 | — | 6 | [1, 100] | not determined |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| m | 7.5 | — | — | 6 | [1, 100] | not determined |"), std::string::npos)
+      << md;
   EXPECT_NE(md.find("- a is at its upper bound 4\n- M_z has only 6 rows\n"), std::string::npos);
+  // The interval method chosen decides the CI column; a bootstrap adds its own columns.
+  r.intervals = IntervalMethod::Sandwich;
+  r.interval_method = "sandwich";
+  r.parameters[0].ci95_sandwich = std::array<double, 2>{1.0, 1.5};
+  r.parameters[0].std_error_sandwich = 0.125;
+  r.bootstrap_replicates = 50;
+  r.parameters[0].ci95_bootstrap = std::array<double, 2>{1.1, 1.4};
+  r.parameters[0].std_error_bootstrap = 0.07;
+  const std::string md2 = report_markdown(r);
+  EXPECT_NE(md2.find("| kappa | 1.25 ± 0.0625 | [1, 1.5] | 0.125 | 0.07 | [1.1, 1.4] | 1 |"),
+            std::string::npos)
+      << md2;
+  EXPECT_NE(md2.find("HC3 sandwich"), std::string::npos);
+  EXPECT_NE(md2.find("50 wild (Rademacher) refits"), std::string::npos);
   EXPECT_NE(md.find("| kappa | 1.00 | -0.38 |"), std::string::npos) << md;
   EXPECT_NE(md.find("1% of median \\|T_x\\|"), std::string::npos) << md;  // escaped in a cell
   EXPECT_NE(md.find("![fit_T_x](fit_T_x.svg)"), std::string::npos);
@@ -407,13 +422,10 @@ TEST(WriteReport, WritesOnlyReportFilesIntoAFreshNestedDir) {
   EXPECT_EQ(json.back(), '\n');
   EXPECT_EQ(slurp(dir / "report.md").find("# frictionid fit"), 0u);
 
-  std::vector<std::string> expected = {"report.json", "report.md"};
-  if (gnuplot_available()) {
-    for (const char* c : {"T_x", "M_z"}) {
-      expected.push_back(std::string("fit_") + c + ".svg");
-      expected.push_back(std::string("residuals_") + c + ".svg");
-    }
-  }
+  std::vector<std::string> expected = {"report.json", "report.md", "report.html"};
+  for (const char* c : {"T_x", "M_z"})
+    for (const char* kind : {"collapse_", "fit_", "residuals_"})
+      expected.push_back(kind + std::string(c) + ".svg");
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(names_in(dir), expected);
 
@@ -437,7 +449,6 @@ TEST(WriteReport, RemovesItsPlotStagingDir) {
 }
 
 TEST(WriteReport, EdgeRowsAreNamedInThePlotTitle) {
-  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot not on PATH";
   const Dataset d = make_dataset();
   ScratchDir dir;
   write_report(dir.path().string(), make_result(d), d);
@@ -454,36 +465,31 @@ TEST(WriteReport, ChannelWithoutPredictionsIsSkippedNotFatal) {
   ScratchDir dir;
   write_report(dir.path().string(), r, d);
   EXPECT_FALSE(fs::exists(dir.path() / "fit_M_z.svg"));
-  EXPECT_EQ(fs::exists(dir.path() / "fit_T_x.svg"), gnuplot_available());
+  EXPECT_TRUE(fs::exists(dir.path() / "fit_T_x.svg"));
   EXPECT_EQ(slurp(dir.path() / "report.md").find("fit_M_z.svg"), std::string::npos);
 }
 
-TEST(WriteReport, WithoutGnuplotWritesOnlyTheReports) {
+TEST(WriteReport, PlotsNeedNoExternalProgram) {
   const Dataset d = make_dataset();
   const FitResult r = make_result(d);
   ScratchDir dir, empty_bin;
-  std::vector<std::string> files;
   {
-    ScopedEnv no_gnuplot("PATH", empty_bin.path().string());
-    EXPECT_FALSE(gnuplot_available());
-    files = write_report(dir.path().string(), r, d);
+    ScopedEnv no_programs("PATH", empty_bin.path().string());
+    write_report(dir.path().string(), r, d);
   }
-  ASSERT_EQ(files.size(), 2u);
-  EXPECT_EQ(names_in(dir.path()), (std::vector<std::string>{"report.json", "report.md"}));
-  EXPECT_NE(slurp(dir.path() / "report.md").find("No plots were produced"), std::string::npos);
-  EXPECT_EQ(slurp(dir.path() / "report.md").find(".svg"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir.path() / "collapse_T_x.svg"));
+  EXPECT_TRUE(fs::exists(dir.path() / "fit_M_z.svg"));
 }
 
 TEST(WriteReport, LargeDatasetIsSubsampledAndSaysSo) {
-  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot not on PATH";
   const Dataset d = make_dataset(4001);
   FitResult r = make_result(d);
   r.channels = {Channel::T_x};
   ScratchDir dir;
   write_report(dir.path().string(), r, d);
   const std::string svg = slurp(dir.path() / "fit_T_x.svg");
-  EXPECT_NE(svg.find("every 2nd of 4001 rows plotted"), std::string::npos);
-  EXPECT_NE(slurp(dir.path() / "residuals_T_x.svg").find("every 2nd of 4001 rows plotted"),
+  EXPECT_NE(svg.find("about 1 in 2 of 4001 rows plotted"), std::string::npos);
+  EXPECT_NE(slurp(dir.path() / "residuals_T_x.svg").find("about 1 in 2 of 4001 rows plotted"),
             std::string::npos);
 }
 

@@ -1,6 +1,6 @@
-// The seed's closed-form approximants and the corrected variant (physics.md §3), extended to any
-// slip direction with the structure of the exact general-alpha result (physics.md §2).
-#include "model/approximants.hpp"
+// The seed's closed-form approximants and the corrected variant (docs/physics.md §3), extended to
+// any slip direction with the structure of the exact general-alpha result (docs/physics.md §2).
+#include <frictionid/model/approximants.hpp>
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "model/exact_model.hpp"
+#include <frictionid/model/exact_model.hpp>
 #include "model/test_support.hpp"
 
 namespace frictionid::model {
@@ -59,7 +59,7 @@ bool finite(const Resultants<double>& r) {
 
 const std::vector<double> kEps = {0.0, 1e-9, 1e-4, 0.05, 0.5, 1.0, 1.7, 20.0, 1e4, 1e9};
 
-// α = 0, v_x > 0, ω > 0: the three formulas of physics.md §3, literally, for arbitrary (not
+// α = 0, v_x > 0, ω > 0: the three formulas of docs/physics.md §3, literally, for arbitrary (not
 // matched) a, b, m; M0 = (1+κ)/2 (m2/m1) f N R.
 TEST(Approximants, SeedIsThePublishedFormulasAtAlphaZero) {
   std::mt19937_64 rng(11);
@@ -330,7 +330,7 @@ TEST(Approximants, AntiRollingCoupleIsHNRm3Over2m1) {
   }
 }
 
-// physics.md §3: with matched coefficients the approximants are right at both ends but not in
+// docs/physics.md §3: with matched coefficients the approximants are right at both ends but not in
 // between; the worst relative error of the seed's T_par and M against §2 is of order 10%, near
 // eps ~ 1 (the tool must not present them as exact).
 TEST(Approximants, AreNotExactInBetween) {

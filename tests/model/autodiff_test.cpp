@@ -1,6 +1,6 @@
 // Automatic derivatives (ceres::Jet) of every model variant with respect to every parameter
 // (f, kappa, h, a, b, m, n, p0, b_tilde) against fourth-order central differences of the double
-// evaluation, and their finiteness at degenerate kinematics (physics.md §5 "Autodiff").
+// evaluation, and their finiteness at degenerate kinematics (docs/physics.md §5 "Autodiff").
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "identify/model_variant.hpp"
-#include "model/pressure_table.hpp"
+#include <frictionid/model/pressure_table.hpp>
+#include <frictionid/model_variant.hpp>
 
 namespace frictionid {
 namespace {
@@ -36,7 +36,12 @@ std::vector<LawCase> laws() {
           {"power:1.7", model::PressureLaw<double>::power(1.7)},
           {"power:0.4", model::PressureLaw<double>::power(0.4)},
           {"table", model::PressureLaw<double>::tabulated(
-                        std::make_shared<const model::PressureTable>(rho, sigma))}};
+                        std::make_shared<const model::PressureTable>(rho, sigma))},
+          {"annulus:0.4", model::PressureLaw<double>::annulus(0.4)},
+          {"ring", model::PressureLaw<double>::ring()},
+          {"step table",
+           model::PressureLaw<double>::tabulated(std::make_shared<const model::PressureTable>(
+               std::vector<double>{0.0, 0.5, 0.5, 1.0}, std::vector<double>{2.0, 2.0, 1.0, 0.5}))}};
 }
 
 const std::array<ModelKind, 3> kKinds = {ModelKind::Seed, ModelKind::Corrected, ModelKind::Exact};

@@ -1,5 +1,5 @@
-// Approximant coefficients a, b, m, b_tilde, p0, mu_M (physics.md §3) against hand-derived closed
-// forms, their consistency bounds over random pressure shapes, and m(alpha) with d22.
+// Approximant coefficients a, b, m, b_tilde, p0, mu_M (docs/physics.md §3) against hand-derived
+// closed forms, their consistency bounds over random pressure shapes, and m(alpha) with d22.
 //
 // Hand derivation from m_k = ∫ sigma0 rho^k drho:
 //   uniform   m0..m3 = 1, 1/2, 1/3, 1/4         a = 1, b = 16, m = [4(1+κ)/(3κ)]²,
@@ -8,7 +8,7 @@
 //             b~ = (15π/32)², p0 = 3π/32, mu_M = 3π/16, rho_roll = 1/5
 //   parabolic m0..m3 = 2/3, 1/4, 2/15, 1/12     a = 9/16, b = 36, m = [8(1+κ)/(5κ)]²,
 //             b~ = (8/5)², p0 = 4/15, mu_M = 8/15, rho_roll = 1/6
-#include "model/coefficients.hpp"
+#include <frictionid/model/coefficients.hpp>
 
 #include <gtest/gtest.h>
 
@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "model/pressure_law.hpp"
-#include "model/pressure_table.hpp"
+#include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model/pressure_table.hpp>
 #include "model/test_support.hpp"
 
 namespace frictionid::model {

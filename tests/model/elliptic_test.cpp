@@ -1,4 +1,4 @@
-#include "model/elliptic.hpp"
+#include <frictionid/model/elliptic.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-// The exact (ring-reduced) model, physics.md §2 and the checks of §5: against the brute-force 2-D
-// reference integrator, fast paths against the ring quadrature, asymptotic slopes (a, b, m,
+// The exact (ring-reduced) model, docs/physics.md §2 and the checks of §5: against the brute-force
+// 2-D reference integrator, fast paths against the ring quadrature, asymptotic slopes (a, b, m,
 // b_tilde, p0 of §3), identities, power balance, parities and edge cases.
-#include "model/exact_model.hpp"
+#include <frictionid/model/exact_model.hpp>
 
 #include <gtest/gtest.h>
 
@@ -180,8 +180,8 @@ TEST(ExactModel, UniformIsotropicFastPathMatchesRingQuadrature) {
   }
 }
 
-// The ring quadrature's documented accuracy (~1e-12 relative, tanh_sinh_rule.hpp; physics.md §5)
-// must hold just inside eps = 1 too, where sigma0's rim branch point (1 - rho^2)^n sits at
+// The ring quadrature's documented accuracy (~1e-12 relative, tanh_sinh_rule.hpp; docs/physics.md
+// §5) must hold just inside eps = 1 too, where sigma0's rim branch point (1 - rho^2)^n sits at
 // distance 1 - eps beyond the end of the inner piece [0, eps]. Checked at 1e-11 (10x slack)
 // against the Hertz closed form (itself checked against the reference above) and, for a general
 // angle and power:0.1, against the 2-D reference.
@@ -244,7 +244,7 @@ TEST(ExactModel, RingQuadratureStaysAccurateForSteepPowerLaws) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// (c) Asymptotic slopes (physics.md §5): t ≈ (m0/(2m1)) eps as eps -> 0; p ≈ m3/(2 m1 eps),
+// (c) Asymptotic slopes (docs/physics.md §5): t ≈ (m0/(2m1)) eps as eps -> 0; p ≈ m3/(2 m1 eps),
 // m-hat ≈ kappa m3/((1+kappa) m2 eps) as eps -> inf; p(0) = p0 = m2/(2 m1). Inverting the
 // approximants' limits gives estimates of a, b, m, b_tilde; compared with the §3 definitions
 // evaluated from Beta-function moments.
@@ -328,7 +328,7 @@ TEST(ExactModel, LargeEpsSlopeOfLateralForceReproducesBTilde) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// (d) Identities of physics.md §5.
+// (d) Identities of docs/physics.md §5.
 
 // kappa = 1: d m-hat/d eps = -(m1/m2) eps dt/d eps, i.e. d(M_z/(fNR))/d eps = -eps d(T_x/(fN))/d
 // eps.
@@ -442,10 +442,10 @@ TEST(ExactModel, DissipatedPowerEqualsTheIntegratedLocalPower) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// (f) Parities. Aligned case (physics.md §2): T_par odd in v, T_perp even in v and odd in omega,
-// M_z odd in omega (and, since it does not depend on h there, even in v). Any alpha: reversing
-// v and omega together reverses every friction resultant; the mirror y -> -y maps
-// (v_x, v_y, omega) to (v_x, -v_y, -omega) and (T_x, T_y, M_z) to (T_x, -T_y, -M_z).
+// (f) Parities. Aligned case (docs/physics.md §2): T_par odd in v, T_perp even in v and odd in
+// omega, M_z odd in omega (and, since it does not depend on h there, even in v). Any alpha:
+// reversing v and omega together reverses every friction resultant; the mirror y -> -y maps (v_x,
+// v_y, omega) to (v_x, -v_y, -omega) and (T_x, T_y, M_z) to (T_x, -T_y, -M_z).
 
 TEST(ExactModel, AlignedParities) {
   for (const Law& law : all_laws()) {

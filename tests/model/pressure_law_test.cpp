@@ -1,6 +1,6 @@
-// Pressure laws (physics.md §1): shapes, moments m0..m5 against the Beta function, the
+// Pressure laws (docs/physics.md §1): shapes, moments m0..m5 against the Beta function, the
 // equivalences power:0 = uniform, power:0.5 = hertz, power:1 = parabolic, and tabulated laws.
-#include "model/pressure_law.hpp"
+#include <frictionid/model/pressure_law.hpp>
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "model/coefficients.hpp"
-#include "model/pressure_table.hpp"
+#include <frictionid/model/coefficients.hpp>
+#include <frictionid/model/pressure_table.hpp>
 #include "model/test_support.hpp"
 
 namespace frictionid::model {
@@ -187,8 +187,79 @@ void expect_invalid(std::vector<double> rho, std::vector<double> sigma, const st
 }
 
 TEST(PressureTable, RejectsNonIncreasingRho) {
-  expect_invalid({0.0, 0.5, 0.5, 1.0}, {1, 1, 1, 0}, "repeated rho");
+  expect_invalid({0.0, 0.5, 0.5, 0.5, 1.0}, {1, 1, 1, 1, 0}, "rho three times");
   expect_invalid({0.0, 0.6, 0.5, 1.0}, {1, 1, 1, 0}, "decreasing rho");
+}
+
+// Two samples with the same rho: the value before, then the value after the step; the runs on
+// either side are interpolated separately (a run of two samples is a straight line).
+TEST(PressureTable, ARepeatedRhoIsAStep) {
+  const PressureTable t({0.0, 0.4, 0.4, 1.0}, {2.0, 1.0, 3.0, 4.0});
+  EXPECT_DOUBLE_EQ(t(0.2, 0.8), 1.5);
+  EXPECT_DOUBLE_EQ(t(0.4 - 1e-12, 0.6 + 1e-12), 1.0 + 2.5e-12);
+  EXPECT_DOUBLE_EQ(t(0.4, 0.6), 3.0);  // the value after the step
+  EXPECT_DOUBLE_EQ(t(0.7, 0.3), 3.5);
+  EXPECT_EQ(t.steps(), std::vector<double>{0.4});
+  EXPECT_EQ(t.breakpoints(), std::vector<double>{0.4});
+}
+
+// A step table's moments are those of its pieces: here the annulus B = 0.3.
+TEST(PressureTable, StepTableMomentsAreTheAnnulusMoments) {
+  const auto law = PressureLaw<double>::tabulated(std::make_shared<const PressureTable>(
+      std::vector<double>{0.0, 0.3, 0.3, 1.0}, std::vector<double>{0.0, 0.0, 1.0, 1.0}));
+  const auto mo = law_moments(law);
+  for (int k = 0; k < 6; ++k) {
+    const double want = (1.0 - std::pow(0.3, k + 1)) / (k + 1);
+    EXPECT_NEAR(mo[k], want, 1e-15) << "m" << k;
+  }
+}
+
+TEST(PressureLaw, AnnulusMomentsAreOneMinusBToTheKPlusOneOverKPlusOne) {
+  for (double B : {0.0, 1e-9, 0.3, 0.9, 0.999999}) {
+    const auto mo = law_moments(PressureLaw<double>::annulus(B));
+    for (int k = 0; k < 6; ++k) {
+      // (1 - B^(k+1))/(k+1) = (1 - B)(1 + B + ... + B^k)/(k+1), no cancellation as B -> 1.
+      double geometric = 0.0;
+      for (int j = 0; j <= k; ++j) geometric += std::pow(B, j);
+      const double want = (1.0 - B) * geometric / (k + 1);
+      EXPECT_NEAR(mo[k], want, 1e-14 * want) << B << " m" << k;
+    }
+  }
+}
+
+TEST(PressureLaw, AnnulusZeroIsUniform) {
+  const auto a = law_moments(PressureLaw<double>::annulus(0.0));
+  const auto u = law_moments(PressureLaw<double>::uniform());
+  for (int k = 0; k < 6; ++k) EXPECT_DOUBLE_EQ(a[k], u[k]);
+  EXPECT_TRUE(PressureLaw<double>::annulus(0.0).breakpoints().empty());
+  EXPECT_EQ(PressureLaw<double>::annulus(0.4).breakpoints(), std::vector<double>{0.4});
+}
+
+// All load on the rim: every moment m_k = ∫ delta(rho - 1) rho^k is 1, so a = b = 4 and m sits
+// on both of its bounds (docs/physics.md §3): the extreme the consistency bounds allow.
+TEST(PressureLaw, RingMomentsAreAllOneAndItsCoefficientsSitOnTheBounds) {
+  const auto mo = law_moments(PressureLaw<double>::ring());
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(mo[k], 1.0);
+  for (double kappa : {0.5, 1.0, 2.0}) {
+    const auto c = coefficients(mo, kappa);
+    EXPECT_DOUBLE_EQ(c.a, 4.0);
+    EXPECT_DOUBLE_EQ(c.b, 4.0);
+    EXPECT_DOUBLE_EQ(c.m, std::pow((1 + kappa) / kappa, 2));
+    EXPECT_TRUE(check_consistency(c, kappa).all());
+  }
+}
+
+// Every annulus satisfies the consistency bounds, and a -> 4, b -> 4 as B -> 1.
+TEST(PressureLaw, AnnulusCoefficientsSatisfyTheBoundsAndTendToTheRing) {
+  double last_gap = HUGE_VAL;
+  for (double B : {0.0, 0.3, 0.6, 0.9, 0.99, 0.999}) {
+    const auto c = coefficients(law_moments(PressureLaw<double>::annulus(B)), 1.3);
+    EXPECT_TRUE(check_consistency(c, 1.3).all()) << B;
+    const double gap = (4.0 - c.a) + (c.b - 4.0);
+    EXPECT_LT(gap, last_gap) << B;
+    last_gap = gap;
+  }
+  EXPECT_LT(last_gap, 20 * (1 - 0.999));  // (4 - a) + (b - 4) = O(1 - B)
 }
 
 TEST(PressureTable, RejectsRhoOutsideTheUnitInterval) {

@@ -1,6 +1,6 @@
 // Brute-force reference for the dry-friction resultants (test oracle).
 //
-// Integrates the local Coulomb law of physics.md §1 directly over the contact disk with nested
+// Integrates the local Coulomb law of docs/physics.md §1 directly over the contact disk with nested
 // adaptive Gauss–Kronrod (G10K21) quadrature: adaptive in rho, and for every rho node an adaptive
 // integral over theta. It deliberately uses no elliptic integrals and no ring reduction, so it is
 // an independent check of src/model. Only the C++ standard library is used.
@@ -189,7 +189,8 @@ struct DiskResult {
 // rho = 1, the kink at rho = eps) on both ends. The caller chooses phi = 0 at the singular
 // direction so the near-singular point of every ring sits at the ends of [-pi, 0] and [0, pi].
 template <std::size_t N, class MakeRing>
-DiskResult<N> integrate_disk(const MakeRing& make_ring, double eps, double rel_tol) {
+DiskResult<N> integrate_disk(const MakeRing& make_ring, double eps, double rel_tol,
+                             const std::vector<double>& breakpoints = {}) {
   constexpr double kTwoPi = 6.283185307179586476925286766559;
   // Below ~1e-13 the 50-ulp floor per panel makes the tolerance unreachable.
   rel_tol = std::max(rel_tol, 1e-13);
@@ -199,12 +200,16 @@ DiskResult<N> integrate_disk(const MakeRing& make_ring, double eps, double rel_t
   const std::vector<std::pair<int, std::pair<double, double>>> inner_init = {
       {0, {-0.5 * kTwoPi, 0.0}}, {0, {0.0, 0.5 * kTwoPi}}};
 
+  // Also split at the pressure law's breakpoints (steps, kinks): a Gauss rule across a jump
+  // converges only algebraically however far the bisection goes.
+  std::vector<double> edges = {0.0, 1.0};
+  if (eps > 0.0 && eps < 1.0) edges.push_back(eps);
+  for (double b : breakpoints)
+    if (b > 0.0 && b < 1.0) edges.push_back(b);
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   std::vector<std::pair<double, double>> segs;
-  if (eps > 0.0 && eps < 1.0) {
-    segs = {{0.0, eps}, {eps, 1.0}};
-  } else {
-    segs = {{0.0, 1.0}};
-  }
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) segs.push_back({edges[i], edges[i + 1]});
 
   // Outer integrand in t: N values, then the rings' L1 scale and their error estimates.
   constexpr std::size_t M = N + 2;
@@ -266,15 +271,19 @@ inline SingularPoint singular_point(double v_x, double v_y, double omega) {
 
 }  // namespace ref_quad
 
-// Resistance resultants (physics.md §1 sign convention) for R = 1, c = 1, f = 1:
+// Resistance resultants (docs/physics.md §1 sign convention) for R = 1, c = 1, f = 1:
 //   sigma = sigma0(rho) (1 + h rho cos theta), v_Sigma = (v_x - omega y, v_y + omega x),
 //   T = ∫ sigma D v_Sigma/|v_Sigma| dS, M_z = ∫ sigma (r x D v_Sigma/|v_Sigma|)_z dS, D = diag(1,
 //   kappa).
 // rel_tol is relative to ∫ max(|integrand components|) dS (~ max(1, kappa) (1 + |h|) N0);
-// values below 1e-13 are clamped.
+// values below 1e-13 are clamped. breakpoints: the rho where sigma0 or its derivative jumps.
+// rim_only: sigma0 is a delta on rho = 1 (the ring law), so only the ring rho = 1 is integrated,
+// with weight sigma0(1).
 inline ReferenceResult reference_resultants(const std::function<double(double)>& sigma0,
                                             double kappa, double h, double v_x, double v_y,
-                                            double omega, double rel_tol = 1e-12) {
+                                            double omega, double rel_tol = 1e-12,
+                                            const std::vector<double>& breakpoints = {},
+                                            bool rim_only = false) {
   const double speed = std::hypot(v_x, v_y);
   if (speed == 0.0 && omega == 0.0) return {0.0, 0.0, 0.0, 0.0};
   const ref_quad::SingularPoint sp = ref_quad::singular_point(v_x, v_y, omega);
@@ -308,7 +317,24 @@ inline ReferenceResult reference_resultants(const std::function<double(double)>&
     };
   };
 
-  const auto r = ref_quad::integrate_disk<3>(make_ring, omega == 0.0 ? 2.0 : sp.eps, rel_tol);
+  if (rim_only) {
+    const auto ring = make_ring(1.0);
+    auto eval = [&](int seg, double p0, double p1) {
+      const ref_quad::Gk21Result<3> g = ref_quad::gk21<3>(ring, p0, p1);
+      ref_quad::Panel<3> p{seg, p0, p1, g.value, 0.0, 0.0};
+      for (std::size_t c = 0; c < 3; ++c) {
+        p.err = std::max(p.err, g.err[c]);
+        p.l1 = std::max(p.l1, g.abs[c]);
+      }
+      return p;
+    };
+    const double pi = 3.141592653589793238462643383279502884;
+    const auto r = ref_quad::adapt<3>(eval, {{0, {-pi, 0.0}}, {0, {0.0, pi}}},
+                                      std::max(rel_tol, 1e-13), 20000);
+    return {r.value[0], r.value[1], r.value[2], r.err};
+  }
+  const auto r =
+      ref_quad::integrate_disk<3>(make_ring, omega == 0.0 ? 2.0 : sp.eps, rel_tol, breakpoints);
   return {r.value[0], r.value[1], r.value[2], r.abs_error};
 }
 

@@ -1,6 +1,7 @@
 // Self-test of the brute-force reference integrator against results known without the ring
-// reduction: exact pure-sliding / pure-spin resultants, closed forms of physics.md §2 (evaluated in
-// long double, where they are well conditioned), large-eps series, and the power balance of §5.
+// reduction: exact pure-sliding / pure-spin resultants, closed forms of docs/physics.md §2
+// (evaluated in long double, where they are well conditioned), large-eps series, and the power
+// balance of §5.
 #include "model/reference_integrator.hpp"
 
 #include <gtest/gtest.h>
@@ -138,7 +139,7 @@ TEST(ReferenceIntegrator, UniformClosedForm) {
   }
 }
 
-// Hertz closed forms (physics.md §2) with kappa != 1 and tilt: T_x = F0 t, T_y = h kappa F0 p,
+// Hertz closed forms (docs/physics.md §2) with kappa != 1 and tilt: T_x = F0 t, T_y = h kappa F0 p,
 // M_z = M0 [2 mhat + (kappa - 1)(2 m1/m2) p] / (1 + kappa); F0 = 2 pi/3, m1 = 1/3, m2 = pi/16.
 TEST(ReferenceIntegrator, HertzClosedForms) {
   const Law hertz{"hertz", 0.5};
@@ -186,8 +187,8 @@ TEST(ReferenceIntegrator, LargeEpsSeries) {
   }
 }
 
-// (4) Power balance (physics.md §5): T.v + M_z omega = ∫ sigma (v_S . D v_S)/|v_S| dS, the right
-// side integrated separately, with v_S formed directly in x-y coordinates.
+// (4) Power balance (docs/physics.md §5): T.v + M_z omega = ∫ sigma (v_S . D v_S)/|v_S| dS, the
+// right side integrated separately, with v_S formed directly in x-y coordinates.
 TEST(ReferenceIntegrator, PowerBalance) {
   struct Case {
     double kappa, h, vx, vy, omega;

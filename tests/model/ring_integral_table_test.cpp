@@ -1,7 +1,7 @@
 // The tabulated ring integrals (ring_integral_table.hpp) against the radial quadrature on a
 // finer rule, the brute-force 2-D reference, the n-derivative by central differences, and the
 // known limits at both ends of eps.
-#include "model/ring_integral_table.hpp"
+#include <frictionid/model/ring_integral_table.hpp>
 
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include <random>
 #include <string>
 
-#include "model/exact_model.hpp"
+#include <frictionid/model/exact_model.hpp>
 #include "model/reference_integrator.hpp"
 #include "model/test_support.hpp"
 

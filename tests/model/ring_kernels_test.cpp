@@ -1,7 +1,7 @@
-// Ring kernels P, Q, S, U, V, X (physics.md §2) against an independent θ-quadrature, their series
-// at small and large k, their limits, continuity across the centre ring k = 1 and the μ-form
+// Ring kernels P, Q, S, U, V, X (docs/physics.md §2) against an independent θ-quadrature, their
+// series at small and large k, their limits, continuity across the centre ring k = 1 and the μ-form
 // identities near k = 1.
-#include "model/ring_kernels.hpp"
+#include <frictionid/model/ring_kernels.hpp>
 
 #include <gtest/gtest.h>
 
@@ -198,7 +198,7 @@ TEST(RingKernels, FollowTheirLargeKSeriesToFullRelativePrecision) {
   }
 }
 
-// physics.md §2: P(0)=0, P(∞)=2π, Q(0)=π, Q~π/k, J(0)=2π, J~π/k, S=O(k⁻³).
+// docs/physics.md §2: P(0)=0, P(∞)=2π, Q(0)=π, Q~π/k, J(0)=2π, J~π/k, S=O(k⁻³).
 TEST(RingKernels, HaveTheLimitsOfPhysicsSection2) {
   const auto z = ring_kernels(0.0);
   EXPECT_EQ(z.P, 0.0);
@@ -261,7 +261,7 @@ TEST(RingKernels, ConvenienceEntryIsExactOnTheCentreRing) {
   for (int j = 0; j < kKernelCount; ++j) EXPECT_NEAR(got[j], exact[j], 1e-13) << kNames[j];
 }
 
-// physics.md §2 μ forms (k ≤ 1, modulus k; μ_n(k) = μ_n(1/k)/k for k > 1), evaluated in long
+// docs/physics.md §2 μ forms (k ≤ 1, modulus k; μ_n(k) = μ_n(1/k)/k for k > 1), evaluated in long
 // double with the standard library's elliptic integrals (not src's AGM).
 std::array<long double, 4> mu_closed(long double k) {
   if (k > 1) {
@@ -278,7 +278,7 @@ std::array<long double, 4> mu_closed(long double k) {
 const std::vector<double> kNearOne = {0.6,     0.8,   0.9,  0.99, 0.999,     0.99999,
                                       1.00001, 1.001, 1.01, 1.1,  1.0 / 0.8, 1.6};
 
-// The μ closed forms of physics.md §2 are the θ-moments ∫ sinⁿθ/Δ near k = 1.
+// The μ closed forms of docs/physics.md §2 are the θ-moments ∫ sinⁿθ/Δ near k = 1.
 TEST(RingKernels, MuClosedFormsAreTheAngularMomentsNearTheCentreRing) {
   for (double k : kNearOne) {
     const auto mu = mu_closed(k);

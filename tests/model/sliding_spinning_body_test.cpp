@@ -1,9 +1,9 @@
-// The Dormand–Prince integrator and the sliding–spinning body (physics.md §4): convergence order
-// on known ODEs, the terminal ratio eps of the uniform disk against an independent root of the
-// closed forms (std::comp_ellint_*, not src/model) and the literature value 0.653 (Farkas,
+// The Dormand–Prince integrator and the sliding–spinning body (docs/physics.md §4): convergence
+// order on known ODEs, the terminal ratio eps of the uniform disk against an independent root of
+// the closed forms (std::comp_ellint_*, not src/model) and the literature value 0.653 (Farkas,
 // Bartels, Unger & Wolf, PRL 90, 248302, 2003), simultaneous stops, energy decay, and the pure
 // sliding / pure spinning stop times in closed form.
-#include "model/sliding_spinning_body.hpp"
+#include <frictionid/model/sliding_spinning_body.hpp>
 
 #include <gtest/gtest.h>
 
@@ -11,12 +11,12 @@
 #include <memory>
 #include <vector>
 
-#include "model/approximants.hpp"
-#include "model/coefficients.hpp"
-#include "model/dormand_prince.hpp"
-#include "model/exact_model.hpp"
-#include "model/pressure_law.hpp"
-#include "model/pressure_table.hpp"
+#include <frictionid/model/approximants.hpp>
+#include <frictionid/model/coefficients.hpp>
+#include <frictionid/model/dormand_prince.hpp>
+#include <frictionid/model/exact_model.hpp>
+#include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model/pressure_table.hpp>
 
 namespace {
 

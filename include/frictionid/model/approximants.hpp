@@ -1,0 +1,148 @@
+// The seed's closed-form approximants (docs/physics.md §3) and the "corrected" variant, extended to
+// any slip direction by the structure of the exact general-alpha result (docs/physics.md §2):
+//
+//   T_par  = F0 [d11 (t + s h sin(a) s_hat) + s d12 h cos(a) p_hat]
+//   T_perp = F0 [d12 (t + s h sin(a) s_hat) + s d22 h cos(a) p_hat]
+//   M_z    = s M0 g_hat + F0 R h rho_roll [cos(a) d12 (x_hat - u_hat) - sin(a) (d22 u_hat - d11
+//   v_hat)]
+//
+// with eps = v/(|omega| R), F0 = f N, M0 = (1+kappa)/2 mu_M f N R, rho_roll = m3/(2 m1) and
+// closed-form stand-ins for the normalised ring integrals:
+//   t     = eps/sqrt(eps^2 + a)                        (I_P/(2 pi m1), the seed's T_par)
+//   p_hat = eps/sqrt((1 + b eps^2)(eps^2 + a))         seed (I_Q/(2 pi m1); odd, 0 at v = 0)
+//         = p0/sqrt(1 + b~ eps^2)                      corrected (finite pure-spin limit p0)
+//   g_hat = 1/sqrt(1 + m(alpha) eps^2), m(alpha) = m kappa^2/d22^2   (the seed's M_v)
+//   s_hat = p0/(1 + b_S eps^2)^(3/2)                   (I_S/(2 pi m1): p0 at 0, ~eps^-3 at inf)
+//   x_hat = eps/sqrt(eps^2 + c_X), v_hat = eps/sqrt(eps^2 + c_V)   (I_X, I_V over pi m3)
+//   u_hat = (m2/(4 m3)) eps/(1 + c_U eps^2)^(3/2)      (I_U/(pi m3): 0 at both ends)
+// Each stand-in matches the exact integral's value and leading slope at eps -> 0 and its leading
+// term at eps -> inf; b_S, c_X, c_V, c_U come from the pressure law's moments. At alpha = 0
+// (slip along +x, the seed's domain) every tilt stand-in except p_hat drops out and the seed's
+// three published formulas are reproduced exactly; for v_x < 0 the structure makes T_y even in
+// v (the exact parity), where the published T_perp (defined for v_x >= 0 only) would be odd.
+#pragma once
+
+#include <array>
+#include <cmath>
+
+#include <frictionid/model/coefficients.hpp>
+#include <frictionid/model/kinematics.hpp>
+#include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model/scalar_ops.hpp>
+
+namespace frictionid::model {
+
+enum class ApproximantForm { Seed, Corrected };
+
+template <typename T>
+struct ApproximantParams {
+  T f, kappa, h;
+  T a;   // T_par slope coefficient
+  T b;   // seed: b of T_perp; corrected: b_tilde
+  T m;   // M_z coefficient at alpha = 0
+  T p0;  // corrected only: pure-spin lateral force ratio
+};
+
+// Shape constants of the tilt stand-ins, fixed by the pressure law.
+template <typename T>
+struct ApproximantShape {
+  T mu_M, rho_roll, p0_law, b_S, c_X, c_V, c_U, u_scale;
+};
+
+template <typename T>
+ApproximantShape<T> approximant_shape(const LawMoments<T>& mo) {
+  using std::cbrt;
+  ApproximantShape<T> s;
+  s.mu_M = mo[2] / mo[1];
+  s.rho_roll = mo[3] / (T(2) * mo[1]);
+  s.p0_law = mo[2] / (T(2) * mo[1]);
+  const T rS = T(4) * mo[2] / mo[5];
+  s.b_S = cbrt(rS * rS);
+  const T rX = T(4) * mo[3] / (T(3) * mo[2]);
+  s.c_X = rX * rX;
+  const T rV = T(4) * mo[3] / mo[2];
+  s.c_V = rV * rV;
+  const T rU = mo[2] / mo[5];
+  s.c_U = cbrt(rU * rU);
+  s.u_scale = mo[2] / (T(4) * mo[3]);
+  return s;
+}
+
+// The shape constants are plain doubles: the pressure law of a closed-form fit is fixed, so
+// they never carry derivatives (and autodiff need not pay for them).
+template <typename T>
+Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantParams<T>& p,
+                                     const ApproximantShape<double>& shape, const Kinematics& k) {
+  const SlipGeometry g = slip_geometry(k);
+  Resultants<T> r;
+  r.M_roll = p.h * k.N * k.R * shape.rho_roll;
+  r.N = T(k.N);
+  if (g.at_rest) {
+    r.T_x = r.T_y = r.M_z = T(0);
+    return r;
+  }
+  const double eps = g.eps, ca = g.cos_alpha, sa = g.sin_alpha, s = g.spin_sign;
+  const bool small = eps <= 1.0;
+  // Every stand-in is a factor times 1/sqrt(y). For large eps the forms are divided through by
+  // eps; q = 1/eps stays a plain double (0 for pure sliding), because sqrt of a constant-zero
+  // Jet has a NaN derivative.
+  const double e2 = eps * eps, q = small ? 0.0 : g.inv_eps, inv2 = q * q;
+  // t = eps/sqrt(eps^2 + a)
+  const T y_t = small ? T(e2) + p.a : T(1) + p.a * inv2;
+  const double f_t = small ? eps : 1.0;
+  // p_hat: seed eps/sqrt((1 + b eps^2)(eps^2 + a)); corrected p0/sqrt(1 + b~ eps^2)
+  const bool seed = form == ApproximantForm::Seed;
+  const T y_p = seed ? (small ? (T(1) + p.b * e2) * y_t : (T(inv2) + p.b) * y_t)
+                     : (small ? T(1) + p.b * e2 : T(inv2) + p.b);
+  const T f_p = seed ? T(small ? eps : q) : p.p0 * (small ? 1.0 : q);
+  const T F0 = p.f * k.N;
+  const T M0 = (T(1) + p.kappa) * (0.5 * shape.mu_M * k.R) * F0;
+  if (sa == 0.0) {
+    // Slip along the x axis (ca = +-1) or pure spin: d11 = 1, d12 = 0, d22 = kappa, m(alpha) = m
+    // and every tilt stand-in but p_hat drops out; the common case of test-rig data, and the
+    // seed's three published formulas.
+    const T t = f_t * inv_sqrt(y_t);
+    const T p_hat = f_p * inv_sqrt(y_p);
+    const T g_aligned = small ? inv_sqrt(T(1) + p.m * e2) : q * inv_sqrt(T(inv2) + p.m);
+    r.T_x = F0 * (ca * t);
+    r.T_y = F0 * p.kappa * p.h * (s * p_hat);
+    r.M_z = M0 * s * g_aligned;
+    return r;
+  }
+  const T d11 = T(ca * ca) + p.kappa * (sa * sa);
+  const T d22 = T(sa * sa) + p.kappa * (ca * ca);
+  const T d12 = (p.kappa - T(1)) * (sa * ca);
+  // g_hat = 1/sqrt(1 + m(alpha) eps^2), m(alpha) = m kappa^2/d22^2, as d22/sqrt(d22^2 + ...).
+  const T mk2 = p.m * (p.kappa * p.kappa);
+  const T y_g = small ? d22 * d22 + mk2 * e2 : d22 * d22 * inv2 + mk2;
+  const T f_g = small ? d22 : q * d22;
+  // The tilt stand-ins act only off the principal axis (sin(a) != 0; d12 = 0 otherwise):
+  // s_hat = p0 (1 + b_S eps^2)^(-3/2), u_hat = (m2/(4 m3)) eps (1 + c_U eps^2)^(-3/2),
+  // x_hat = eps/sqrt(eps^2 + c_X), v_hat = eps/sqrt(eps^2 + c_V); for large eps in q.
+  const std::array<double, 4> y_tilt =
+      small ? std::array<double, 4>{1.0 + shape.b_S * e2, 1.0 + shape.c_U * e2, e2 + shape.c_X,
+                                    e2 + shape.c_V}
+            : std::array<double, 4>{inv2 + shape.b_S, inv2 + shape.c_U, 1.0 + shape.c_X * inv2,
+                                    1.0 + shape.c_V * inv2};
+  const T t = f_t * inv_sqrt(y_t);
+  const T p_hat = f_p * inv_sqrt(y_p);
+  const T g_hat = f_g * inv_sqrt(y_g);
+  const std::array<double, 4> r_tilt = inv_sqrt_each(y_tilt);
+  const double qs = small ? 1.0 : q * r_tilt[0];
+  const double s_hat = shape.p0_law * (small ? r_tilt[0] * r_tilt[0] * r_tilt[0] : qs * qs * qs);
+  const double u_hat = shape.u_scale * (small ? eps : inv2) * (r_tilt[1] * r_tilt[1] * r_tilt[1]);
+  const double x_hat = (small ? eps : 1.0) * r_tilt[2];
+  const double v_hat = (small ? eps : 1.0) * r_tilt[3];
+
+  const T base = t + p.h * (s * sa) * s_hat;
+  const T tilt = p.h * (s * ca) * p_hat;
+  const T t_par = F0 * (d11 * base + d12 * tilt);
+  const T t_perp = F0 * (d12 * base + d22 * tilt);
+  r.T_x = t_par * ca - t_perp * sa;
+  r.T_y = t_par * sa + t_perp * ca;
+  r.M_z = M0 * s * g_hat + F0 * k.R * p.h * shape.rho_roll *
+                               (ca * d12 * (x_hat - u_hat) - sa * (d22 * u_hat - d11 * v_hat));
+  return r;
+}
+
+}  // namespace frictionid::model

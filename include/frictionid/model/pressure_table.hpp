@@ -1,0 +1,143 @@
+// A tabulated static pressure sigma0(rho) (docs/physics.md §1, LAW = table:FILE).
+// Interpolation is edge-aware: when the table ends with sigma0(1) = 0 it is written as
+//   sigma0 = (1 - rho^2)^gamma * g(rho),
+// gamma estimated from the last two positive samples, and g interpolated by monotone cubic
+// Hermite (Fritsch–Carlson, never overshoots, so sigma0 stays >= 0). A table sampled from
+// (1 - rho^2)^n thus reproduces it up to the smoothness of g, instead of losing the rim's
+// square-root behaviour to a linear segment (which costs ~1e-4 in m0 for 200 Hertz samples).
+//
+// Steps: two samples with the same rho state a jump, the value before and then after it (an
+// annulus with inner radius 0.3 is 0,0 / 0.3,0 / 0.3,1 / 1,1). The samples between steps form
+// runs that are interpolated independently; at the step itself sigma0 takes the value after.
+// The interpolant is only C^1 at a sample and jumps at a step: breakpoints() lists both, and
+// every radial integral splits there (ring_integrals.hpp).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace frictionid::model {
+
+class PressureTable {
+ public:
+  // Throws std::invalid_argument naming the (0-based) sample when the table is unusable.
+  PressureTable(std::vector<double> rho, std::vector<double> sigma) {
+    if (rho.size() != sigma.size()) throw std::invalid_argument("rho and sigma0 differ in length");
+    if (rho.size() < 2) throw std::invalid_argument("a pressure table needs at least 2 samples");
+    bool any_positive = false;
+    for (std::size_t i = 0; i < rho.size(); ++i) {
+      if (!std::isfinite(rho[i]) || rho[i] < 0.0 || rho[i] > 1.0)
+        throw std::invalid_argument("sample " + std::to_string(i) + ": rho must be in [0, 1]");
+      if (i > 0 && rho[i] < rho[i - 1])
+        throw std::invalid_argument("sample " + std::to_string(i) + ": rho must increase");
+      if (i > 1 && rho[i] == rho[i - 1] && rho[i] == rho[i - 2])
+        throw std::invalid_argument("sample " + std::to_string(i) +
+                                    ": rho must increase (a step takes exactly two rows with the "
+                                    "same rho: the value before and the value after)");
+      if (!std::isfinite(sigma[i]) || sigma[i] < 0.0)
+        throw std::invalid_argument("sample " + std::to_string(i) + ": sigma0 must be >= 0");
+      any_positive = any_positive || sigma[i] > 0.0;
+    }
+    if (!any_positive) throw std::invalid_argument("sigma0 is zero everywhere");
+
+    const std::size_t n = rho.size();
+    gamma_ = 0.0;
+    std::size_t used = n;
+    if (n >= 3 && rho[n - 1] == 1.0 && sigma[n - 1] == 0.0 && sigma[n - 2] > 0.0 &&
+        sigma[n - 3] > 0.0 && rho[n - 3] < rho[n - 2] && rho[n - 2] < rho[n - 1]) {
+      const double g = std::log(sigma[n - 2] / sigma[n - 3]) /
+                       std::log((1.0 - rho[n - 2] * rho[n - 2]) / (1.0 - rho[n - 3] * rho[n - 3]));
+      if (std::isfinite(g) && g > 0.0) {
+        gamma_ = std::min(g, 8.0);
+        used = n - 1;  // g(1) = 0/0: extrapolate g from the interior instead
+      }
+    }
+    rho_.assign(rho.begin(), rho.begin() + static_cast<std::ptrdiff_t>(used));
+    g_.resize(used);
+    for (std::size_t i = 0; i < used; ++i)
+      g_[i] = sigma[i] / std::pow((1.0 - rho_[i]) * (1.0 + rho_[i]), gamma_);
+    slope_.assign(used, 0.0);
+    // Runs of increasing rho between steps, each with its own monotone slopes.
+    std::size_t start = 0;
+    for (std::size_t i = 1; i <= used; ++i) {
+      if (i < used && rho_[i] > rho_[i - 1]) continue;
+      const std::vector<double> x(rho_.begin() + static_cast<std::ptrdiff_t>(start),
+                                  rho_.begin() + static_cast<std::ptrdiff_t>(i));
+      const std::vector<double> y(g_.begin() + static_cast<std::ptrdiff_t>(start),
+                                  g_.begin() + static_cast<std::ptrdiff_t>(i));
+      const std::vector<double> d = monotone_slopes(x, y);
+      std::copy(d.begin(), d.end(), slope_.begin() + static_cast<std::ptrdiff_t>(start));
+      if (i < used && g_[i] != g_[i - 1] && rho_[i] > 0.0 && rho_[i] < 1.0)
+        steps_.push_back(rho_[i]);
+      start = i;
+    }
+    for (double r : rho_)
+      if (r > 0.0 && r < 1.0 && (breakpoints_.empty() || breakpoints_.back() != r))
+        breakpoints_.push_back(r);
+  }
+
+  double gamma() const { return gamma_; }
+  // The samples' rho, a step's rho twice (the rim sample is dropped when gamma > 0).
+  const std::vector<double>& nodes() const { return rho_; }
+  // Distinct rho in (0, 1) where sigma0 or its derivatives jump: every sample.
+  const std::vector<double>& breakpoints() const { return breakpoints_; }
+  // The rho in (0, 1) where sigma0 itself jumps (steps with different values).
+  const std::vector<double>& steps() const { return steps_; }
+
+  // sigma0 at rho, with one_minus_rho = 1 - rho given to full precision near the rim.
+  double operator()(double rho, double one_minus_rho) const {
+    const double edge = gamma_ == 0.0 ? 1.0 : std::pow(one_minus_rho * (1.0 + rho), gamma_);
+    return edge * interpolate(rho);
+  }
+
+ private:
+  double interpolate(double x) const {
+    // Constant extension outside the samples: sigma0 is even in the spot's centre.
+    if (x < rho_.front()) return g_.front();
+    if (x >= rho_.back()) return g_.back();
+    // rho_[i] <= x < rho_[i + 1], both in one run (a step's second sample starts a run).
+    const auto it = std::upper_bound(rho_.begin(), rho_.end(), x);
+    const std::size_t i = static_cast<std::size_t>(it - rho_.begin()) - 1;
+    const double h = rho_[i + 1] - rho_[i];
+    const double t = (x - rho_[i]) / h;
+    const double t2 = t * t, t3 = t2 * t;
+    return (2 * t3 - 3 * t2 + 1) * g_[i] + (t3 - 2 * t2 + t) * h * slope_[i] +
+           (-2 * t3 + 3 * t2) * g_[i + 1] + (t3 - t2) * h * slope_[i + 1];
+  }
+
+  static std::vector<double> monotone_slopes(const std::vector<double>& x,
+                                             const std::vector<double>& y) {
+    const std::size_t n = x.size();
+    std::vector<double> d(n, 0.0), s(n > 1 ? n - 1 : 0);
+    if (n < 2) return d;  // a run of one sample: a constant
+    for (std::size_t i = 0; i + 1 < n; ++i) s[i] = (y[i + 1] - y[i]) / (x[i + 1] - x[i]);
+    if (n == 2) {
+      d[0] = d[1] = s[0];
+      return d;
+    }
+    for (std::size_t i = 1; i + 1 < n; ++i) {
+      if (s[i - 1] * s[i] <= 0.0) continue;  // local extremum: flat
+      const double w1 = 2 * (x[i + 1] - x[i]) + (x[i] - x[i - 1]);
+      const double w2 = (x[i + 1] - x[i]) + 2 * (x[i] - x[i - 1]);
+      d[i] = (w1 + w2) / (w1 / s[i - 1] + w2 / s[i]);  // weighted harmonic mean
+    }
+    auto end_slope = [](double h0, double h1, double s0, double s1) {
+      double e = ((2 * h0 + h1) * s0 - h0 * s1) / (h0 + h1);
+      if (e * s0 <= 0.0) return 0.0;
+      if (s0 * s1 <= 0.0 && std::fabs(e) > std::fabs(3 * s0)) return 3 * s0;
+      return e;
+    };
+    d[0] = end_slope(x[1] - x[0], x[2] - x[1], s[0], s[1]);
+    d[n - 1] = end_slope(x[n - 1] - x[n - 2], x[n - 2] - x[n - 3], s[n - 2], s[n - 3]);
+    return d;
+  }
+
+  double gamma_ = 0.0;
+  std::vector<double> rho_, g_, slope_;
+  std::vector<double> breakpoints_, steps_;
+};
+
+}  // namespace frictionid::model

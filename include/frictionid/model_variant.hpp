@@ -1,0 +1,117 @@
+// The one interface between identification and physics: a model variant maps a parameter vector
+// and one row of kinematics to predicted channels. Every variant reads the same parameter layout;
+// parameters a variant does not use are simply never read (and held fixed by the fitter).
+#pragma once
+
+#include <array>
+#include <map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <frictionid/model/approximants.hpp>
+#include <frictionid/model/coefficients.hpp>
+#include <frictionid/model/exact_model.hpp>
+#include <frictionid/model/pressure_law.hpp>
+#include <frictionid/parameters.hpp>
+
+namespace frictionid {
+
+// Values the pressure law implies for every parameter (f = 1, kappa = 1, h = 0 unless given):
+// a user's --param overrides them; coefficients follow the given kappa.
+inline std::array<double, kParamCount> default_parameters(const model::PressureLaw<double>& law,
+                                                          double f = 1.0, double kappa = 1.0,
+                                                          double h = 0.0) {
+  const auto c = model::coefficients(model::law_moments(law), kappa);
+  std::array<double, kParamCount> p{};
+  p[kF] = f;
+  p[kKappa] = kappa;
+  p[kH] = h;
+  p[kA] = c.a;
+  p[kB] = c.b;
+  p[kM] = c.m;
+  p[kN] = law.kind == model::PressureKind::Power ? law.n : 0.5;
+  p[kP0] = c.p0;
+  p[kBTilde] = c.b_tilde;
+  return p;
+}
+
+// Rows from which a tabulated exact model beats the radial quadrature when the table serves one
+// pass over the rows only (building one costs as much as ~4000 quadrature points).
+inline constexpr std::size_t kRingTableMinRows = 4000;
+
+// A table of law's ring integrals at exponent n (power law; ignored otherwise) for the exact
+// variant, with n-slopes if asked; nullptr for the other variants and the ring law (its
+// integrals are closed-form kernel values, as cheap as a table).
+inline std::shared_ptr<const model::RingIntegralTable> ring_table_for(
+    ModelKind kind, const model::PressureLaw<double>& law, double n, bool n_slope) {
+  if (kind != ModelKind::Exact || law.kind == model::PressureKind::Ring) return nullptr;
+  model::PressureLaw<double> at = law;
+  if (at.kind == model::PressureKind::Power) at.n = n;
+  return std::make_shared<const model::RingIntegralTable>(at, n_slope);
+}
+
+// The same for one pass over `rows` rows: nullptr where the radial quadrature is cheaper.
+inline std::shared_ptr<const model::RingIntegralTable> ring_table_for_rows(
+    ModelKind kind, const model::PressureLaw<double>& law, double n, bool n_slope,
+    std::size_t rows) {
+  return rows >= kRingTableMinRows ? ring_table_for(kind, law, n, n_slope) : nullptr;
+}
+
+// Evaluates one variant for a fixed parameter vector; construct once, call per row.
+template <typename T>
+class ModelEvaluator {
+ public:
+  // table: the law's ring integrals tabulated (exact variant only; see ring_table_for). With a
+  // free exponent n and autodiff T it must carry the n-slopes.
+  // rule: the radial quadrature without a table (default the exact model's own).
+  ModelEvaluator(ModelKind kind, const model::PressureLaw<double>& law, const T* params,
+                 std::shared_ptr<const model::RingIntegralTable> table = nullptr,
+                 const std::vector<model::QuadratureNode>* rule = nullptr)
+      : kind_(kind) {
+    if (kind_ == ModelKind::Exact) {
+      exact_ = std::make_unique<model::ExactModel<T>>(exact_params(params), promote(law, params),
+                                                      std::move(table), rule);
+    } else {
+      shape_ = model::approximant_shape(model::law_moments(law));
+      approx_ = {params[kF],
+                 params[kKappa],
+                 params[kH],
+                 params[kA],
+                 kind == ModelKind::Seed ? params[kB] : params[kBTilde],
+                 params[kM],
+                 params[kP0]};
+    }
+  }
+
+  model::Resultants<T> operator()(const model::Kinematics& k) const {
+    switch (kind_) {
+      case ModelKind::Seed:
+        return model::approximant_resultants(model::ApproximantForm::Seed, approx_, shape_, k);
+      case ModelKind::Corrected:
+        return model::approximant_resultants(model::ApproximantForm::Corrected, approx_, shape_, k);
+      case ModelKind::Exact:
+        return (*exact_)(k);
+    }
+    throw std::logic_error("unknown model kind");
+  }
+
+ private:
+  static model::PressureLaw<T> promote(const model::PressureLaw<double>& law, const T* params) {
+    model::PressureLaw<T> out;
+    out.kind = law.kind;
+    out.table = law.table;
+    out.n = law.kind == model::PressureKind::Power ? params[kN] : T(law.n);
+    return out;
+  }
+  static model::FrictionParams<T> exact_params(const T* p) { return {p[kF], p[kKappa], p[kH]}; }
+
+  ModelKind kind_;
+  std::unique_ptr<model::ExactModel<T>> exact_;  // only for the exact variant
+  model::ApproximantShape<double> shape_{};
+  model::ApproximantParams<T> approx_{};
+};
+
+}  // namespace frictionid

@@ -1,0 +1,92 @@
+"""frictionid.fit: the command line's `fit`, from Python."""
+
+from __future__ import annotations
+
+from typing import Iterable, Mapping, Optional, Sequence, Tuple, Union
+
+from . import _data, _frictionid, _options
+from ._result import FitResult
+
+
+def fit(
+    data: _data.DataLike,
+    model: str = "seed",
+    pressure: str = "hertz",
+    *,
+    fix: Optional[Mapping[str, float]] = None,
+    bounds: Optional[Mapping[str, Tuple[float, float]]] = None,
+    start: Optional[Mapping[str, float]] = None,
+    loss: Union[str, Sequence] = "none",
+    channels: Optional[Union[str, Iterable[str]]] = None,
+    noise_model: str = "auto",
+    seed: int = 1,
+    threads: int = 0,
+    starts: int = 4,
+    global_search: bool = True,
+    global_algorithm: str = "crs2",
+    global_evaluations: int = 3000,
+    global_subsample: int = 400,
+    columns: Optional[Mapping[str, str]] = None,
+) -> FitResult:
+    """Identify the parameters of ``model`` from steady-state measurements.
+
+    The same fit as ``frictionid fit``: the same options give the same settings (they are
+    checked by the command line's code), and the same rows, options and seed give the same
+    parameters, standard errors and report, bit for bit.
+
+    Args:
+        data: a CSV path (read by the command line's reader), a pandas DataFrame or a dict of
+            1-D arrays with the canonical columns ``v_x``, ``v_y`` (optional), ``omega``, ``N``,
+            ``R``, any of ``T_x``, ``T_y``, ``M_z``, ``M_roll`` (NaN: not measured in that row)
+            and optional ``sigma_<channel>``. Other columns are ignored. For bit-identical
+            results with a CSV read by pandas, read it with ``float_precision="round_trip"``.
+        model: ``"seed"`` (f, kappa, h, a, b, m), ``"corrected"`` (f, kappa, h, a, b_tilde, m,
+            p0) or ``"exact"`` (f, kappa, h, and n with ``power:N``).
+        pressure: ``uniform``, ``hertz``, ``parabolic``, ``power:N`` or ``table:FILE``.
+        fix: parameters held at a value, ``{"kappa": 1.0}`` (``--fix kappa=1``).
+        bounds: parameter bounds, ``{"f": (0.1, 2)}`` (``--bounds f=0.1:2``).
+        start: initial values, ``{"f": 0.9}`` (``--param f=0.9``).
+        loss: ``"none"``, ``"huber:S"``, ``"cauchy:S"``, ``"soft_l1:S"`` or ``("huber", S)``.
+        channels: the channels to fit, e.g. ``["T_x", "M_z"]``; default every measured one.
+        noise_model: each channel's noise (``--noise-model``): ``"auto"`` (the ``sigma_*``
+            columns where given, else the variance function with the smallest BIC, estimated
+            from the residuals), ``"constant"``, ``"relative"``, ``"affine"`` (that function for
+            every channel) or ``"columns"`` (the sigma columns as given).
+        seed: seed of the global stage.
+        threads: threads for the passes over the rows (0: every core); results do not depend
+            on it.
+        starts: local fits started from the global stage's best distinct points.
+        global_search: False skips the global stage (``--no-global``).
+        global_algorithm: ``--global-algorithm``.
+        global_evaluations: objective budget of the global stage.
+        global_subsample: rows the global stage sees.
+        columns: renames, canonical name -> name in the data (``--columns``).
+
+    Returns:
+        A :class:`FitResult`.
+
+    Raises:
+        InputError: (a ``ValueError``) bad data or options, with the command line's message.
+        FitError: the fit failed (no start gave a finite model, the solver failed).
+        KeyboardInterrupt: Ctrl-C; the fit stops within about 50 ms of solver work.
+
+    The GIL is released while the fit runs: fits in several Python threads run in parallel.
+    """
+    dataset = _data.load(data, columns)
+    o = _frictionid.FitOptions()
+    o.model = model
+    o.pressure = pressure
+    o.fix = _options.assignments(fix)
+    o.bounds = _options.bounds(bounds)
+    o.initial = _options.assignments(start)
+    o.loss = _options.loss(loss)
+    o.channels = _options.names(channels)
+    o.noise_model = noise_model
+    o.seed = seed
+    o.threads = threads
+    o.starts = starts
+    o.no_global = not global_search
+    o.global_algorithm = global_algorithm
+    o.global_evaluations = global_evaluations
+    o.global_subsample = global_subsample
+    return FitResult(_frictionid.fit(dataset, o), model=model, pressure=pressure)

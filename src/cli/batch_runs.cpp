@@ -1,0 +1,367 @@
+#include "cli/batch_runs.hpp"
+
+#include <glob.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <frictionid/io/dataset_csv.hpp>
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/parameters.hpp>
+#include "cli/fit_options.hpp"
+#include "cli/option_parsers.hpp"
+
+namespace frictionid::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// One file to fit, before --group-by splits it.
+struct BatchEntry {
+  std::string path, label;
+  FitOptions options;
+  std::vector<Covariate> covariates;
+};
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// FNV-1a, 64 bit: a stable hash (std::hash may differ between builds) for the journal's keys.
+std::uint64_t fnv1a(const std::string& bytes, std::uint64_t h = 1469598103934665603ull) {
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+// The fields of one CSV line: comma separated, optionally double-quoted ("" is a quote),
+// spaces and tabs around a field dropped. Enough for a manifest, whose cells are short text.
+std::vector<std::string> csv_fields(std::string line) {
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        out.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        out.back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.emplace_back();
+    } else {
+      out.back() += c;
+    }
+  }
+  for (auto& f : out) {
+    const auto b = f.find_first_not_of(" \t");
+    const auto e = f.find_last_not_of(" \t");
+    f = b == std::string::npos ? "" : f.substr(b, e - b + 1);
+  }
+  return out;
+}
+
+std::vector<std::string> header_of(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // UTF-8 byte-order mark
+  return csv_fields(line);
+}
+
+bool is_manifest(const std::string& path) {
+  const auto header = header_of(path);
+  return std::find(header.begin(), header.end(), "path") != header.end();
+}
+
+std::string stem_of(const std::string& path) {
+  const fs::path p(path);
+  return p.extension() == ".csv" ? p.stem().string() : p.filename().string();
+}
+
+std::vector<std::string> csv_files_in(const std::string& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".csv" && fs::is_regular_file(e.path()))
+      out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  if (out.empty()) throw InputError(dir, 0, 0, "no *.csv file in this directory");
+  return out;
+}
+
+// Files named by one input: itself, a directory's *.csv, or a glob's matches (sorted).
+std::vector<std::string> expand_input(const std::string& input) {
+  std::error_code ec;
+  if (fs::is_directory(input, ec)) return csv_files_in(input);
+  if (fs::is_regular_file(input, ec)) return {input};
+  if (input.find_first_of("*?[") != std::string::npos) {
+    glob_t g{};
+    const int rc = ::glob(input.c_str(), 0, nullptr, &g);
+    std::vector<std::string> out;
+    if (rc == 0)
+      for (std::size_t i = 0; i < g.gl_pathc; ++i) out.push_back(g.gl_pathv[i]);
+    ::globfree(&g);
+    std::vector<std::string> files;
+    for (const auto& m : out) {
+      if (fs::is_directory(m, ec)) {
+        const auto inside = csv_files_in(m);
+        files.insert(files.end(), inside.begin(), inside.end());
+      } else if (fs::is_regular_file(m, ec)) {
+        files.push_back(m);
+      }
+    }
+    if (files.empty()) throw InputError(input, 0, 0, "the pattern matches no CSV file");
+    return files;
+  }
+  throw InputError(input, 0, 0, "no such file or directory");
+}
+
+// Checks o as `fit` would, naming `where` (a manifest line) in the message.
+void check_options(const FitOptions& o, const std::string& file, std::size_t line) {
+  try {
+    (void)fit_settings_from_options(o, o.model);
+  } catch (const InputError& e) {
+    if (file.empty()) throw;
+    throw InputError(file, line, 0, e.what());
+  }
+}
+
+// A covariate may not take the name of a column the summary table already has.
+void check_covariate_name(const std::string& name, const std::string& where) {
+  static const char* const reserved[] = {"label",        "status",      "rows",  "cost",
+                                         "reduced_chi2", "warnings",    "error", "mean_N",
+                                         "mean_speed",   "mean_omega_R"};
+  bool taken = std::find(std::begin(reserved), std::end(reserved), name) != std::end(reserved) ||
+               name.rfind("noise_", 0) == 0;
+  for (const char* p : param_names())
+    for (const char* suffix : {"", "_stderr", "_ci95_lo", "_ci95_hi"})
+      taken = taken || name == std::string(p) + suffix;
+  if (taken)
+    throw InputError(where, 0, 0,
+                     "column '" + name +
+                         "' would clash with the summary table's own column of "
+                         "that name; rename it");
+}
+
+std::vector<BatchEntry> manifest_entries(const std::string& manifest, const FitOptions& o) {
+  std::ifstream in(manifest);
+  std::string text;
+  std::getline(in, text);
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+  const auto header = csv_fields(text);
+  const auto column = [&header](const char* name) -> int {
+    const auto it = std::find(header.begin(), header.end(), name);
+    return it == header.end() ? -1 : static_cast<int>(it - header.begin());
+  };
+  const int path_col = column("path"), label_col = column("label");
+  for (const auto& name : header)
+    if (name != "path" && name != "label") check_covariate_name(name, manifest);
+  const int pressure_col = column("pressure"), fix_col = column("fix");
+  const int channels_col = column("channels");
+  const fs::path base = fs::path(manifest).parent_path();
+  std::vector<BatchEntry> out;
+  for (std::size_t line = 2; std::getline(in, text); ++line) {
+    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const auto cells = csv_fields(text);
+    if (cells.size() != header.size())
+      throw InputError(manifest, line, 0,
+                       "expected " + std::to_string(header.size()) +
+                           " fields as in the header, "
+                           "found " +
+                           std::to_string(cells.size()));
+    const std::string& rel = cells[path_col];
+    if (rel.empty())
+      throw InputError(manifest, line, path_col + 1, "empty path; expected a CSV file");
+    const fs::path p = fs::path(rel).is_absolute() ? fs::path(rel) : base / rel;
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec))
+      throw InputError(manifest, line, path_col + 1,
+                       "no such file '" + rel + "' (paths are relative to the manifest)");
+    BatchEntry e;
+    e.path = p.lexically_normal().string();
+    e.label = label_col >= 0 && !cells[label_col].empty() ? cells[label_col] : stem_of(rel);
+    e.options = o;
+    if (pressure_col >= 0 && !cells[pressure_col].empty()) e.options.pressure = cells[pressure_col];
+    if (fix_col >= 0 && !cells[fix_col].empty()) e.options.fix = cells[fix_col];
+    if (channels_col >= 0 && !cells[channels_col].empty()) e.options.channels = cells[channels_col];
+    check_options(e.options, manifest, line);
+    for (std::size_t k = 0; k < header.size(); ++k)
+      if (static_cast<int>(k) != path_col && static_cast<int>(k) != label_col)
+        e.covariates.push_back({header[k], cells[k]});
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+// The shortest text that reads back as x, for labels made of numeric group values.
+std::string shortest(double x) {
+  char buf[32];
+  if (x == std::floor(x) && std::abs(x) < 1e15) {  // a load level 2000, not 2e+03
+    std::snprintf(buf, sizeof buf, "%.0f", x);
+    return buf;
+  }
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+    if (std::strtod(buf, nullptr) == x) break;
+  }
+  return buf;
+}
+
+// The group-by column's value in each row, as text.
+std::vector<std::string> column_text(const Dataset& d, const std::string& name,
+                                     const std::string& path) {
+  for (std::size_t k = 0; k < d.extra_names.size(); ++k)
+    if (d.extra_names[k] == name) return d.extra_values[k];
+  const std::vector<std::pair<const char*, const std::vector<double>*>> numeric = {
+      {"v_x", &d.v_x}, {"v_y", &d.v_y}, {"omega", &d.omega}, {"N", &d.N}, {"R", &d.R}};
+  for (const auto& [n, values] : numeric)
+    if (name == n && values->size() == d.rows()) {
+      std::vector<std::string> out;
+      for (double x : *values) out.push_back(shortest(x));
+      return out;
+    }
+  std::string known;
+  for (const auto& [n, values] : numeric)
+    if (values->size() == d.rows()) known += std::string(known.empty() ? "" : ", ") + n;
+  for (const auto& n : d.extra_names) known += ", " + n;
+  throw InputError(path, 1, 0, "--group-by: no column '" + name + "' (columns: " + known + ")");
+}
+
+std::string options_text(const FitOptions& o) {
+  std::ostringstream s;
+  s << o.model << '\x1f' << o.pressure << '\x1f' << o.fix << '\x1f' << o.bounds << '\x1f'
+    << o.initial << '\x1f' << o.loss << '\x1f' << o.channels << '\x1f' << o.columns << '\x1f'
+    << o.noise_model << '\x1f' << o.starts << '\x1f' << o.seed << '\x1f' << o.global_evaluations
+    << '\x1f' << o.global_subsample << '\x1f' << o.no_global << '\x1f' << o.global_algorithm;
+  return s.str();
+}
+
+// A label as a directory name: characters outside [A-Za-z0-9._+=-] become '_', and a leading
+// dot is escaped, so that no label names a hidden file, a parent or a subdirectory.
+std::string directory_name(const std::string& label) {
+  std::string out;
+  for (char c : label) {
+    const bool safe = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                      c == '.' || c == '_' || c == '+' || c == '=' || c == '-';
+    out += safe ? c : '_';
+  }
+  if (out.empty() || out[0] == '.') out = "_" + out;
+  return out;
+}
+
+}  // namespace
+
+Dataset select_rows(const Dataset& d, const std::vector<std::size_t>& rows) {
+  Dataset out;
+  out.source = d.source;
+  out.extra_names = d.extra_names;
+  out.extra_values.resize(d.extra_values.size());
+  auto take = [&rows](const auto& column, auto& to) {
+    if (column.empty()) return;  // an absent optional column stays absent
+    for (std::size_t i : rows) to.push_back(column[i]);
+  };
+  take(d.line, out.line);
+  take(d.v_x, out.v_x);
+  take(d.v_y, out.v_y);
+  take(d.omega, out.omega);
+  take(d.N, out.N);
+  take(d.R, out.R);
+  for (int c = 0; c < kChannelCount; ++c) {
+    take(d.value[c], out.value[c]);
+    take(d.present[c], out.present[c]);
+    take(d.sigma[c], out.sigma[c]);
+  }
+  for (std::size_t k = 0; k < d.extra_values.size(); ++k)
+    take(d.extra_values[k], out.extra_values[k]);
+  return out;
+}
+
+std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, const FitOptions& o,
+                                      const std::string& group_by, const std::string& key_extra) {
+  std::vector<BatchEntry> entries;
+  for (const auto& input : inputs)
+    for (const auto& file : expand_input(input)) {
+      if (is_manifest(file)) {
+        auto more = manifest_entries(file, o);
+        entries.insert(entries.end(), more.begin(), more.end());
+      } else {
+        entries.push_back({file, stem_of(file), o, {}});
+      }
+    }
+  if (entries.empty()) throw InputError("batch: no CSV file to fit among the inputs");
+
+  const auto group_columns =
+      group_by.empty() ? std::vector<std::string>{} : parse_name_list("--group-by", group_by);
+  for (const auto& name : group_columns) check_covariate_name(name, "--group-by");
+  std::vector<BatchRun> runs;
+  for (auto& e : entries) {
+    const std::string bytes = read_bytes(e.path);
+    const std::uint64_t file_key =
+        fnv1a(options_text(e.options) + '\x1e' + key_extra, fnv1a(bytes));
+    if (group_columns.empty()) {
+      runs.push_back({e.label, "", e.path, e.options, nullptr, {}, e.covariates, file_key});
+      continue;
+    }
+    auto data = std::make_shared<const Dataset>(
+        load_dataset_csv(e.path, parse_column_map(e.options.columns)));
+    std::vector<std::vector<std::string>> columns;
+    for (const auto& name : group_columns) columns.push_back(column_text(*data, name, e.path));
+    std::map<std::vector<std::string>, std::vector<std::size_t>> groups;
+    for (std::size_t i = 0; i < data->rows(); ++i) {
+      std::vector<std::string> values;
+      for (const auto& c : columns) values.push_back(c[i]);
+      groups[values].push_back(i);
+    }
+    for (auto& [values, rows] : groups) {
+      std::string joined;
+      for (const auto& v : values) joined += (joined.empty() ? "" : "_") + v;
+      BatchRun run;
+      run.label = entries.size() == 1 ? joined : e.label + "_" + joined;
+      run.path = e.path;
+      run.options = e.options;
+      run.file_data = data;
+      run.group_rows = std::move(rows);
+      run.covariates = e.covariates;
+      std::string group_text;
+      for (std::size_t k = 0; k < values.size(); ++k) {
+        run.covariates.push_back({group_columns[k], values[k]});
+        group_text += group_columns[k] + '\x1f' + values[k] + '\x1e';
+      }
+      run.key = fnv1a(group_text, file_key);
+      runs.push_back(std::move(run));
+    }
+  }
+
+  std::sort(runs.begin(), runs.end(),
+            [](const BatchRun& a, const BatchRun& b) { return a.label < b.label; });
+  std::map<std::string, const BatchRun*> by_directory;
+  for (auto& run : runs) {
+    run.directory = directory_name(run.label);
+    const auto [it, fresh] = by_directory.emplace(run.directory, &run);
+    if (!fresh)
+      throw InputError("batch: two runs would share the label '" + run.label + "' (from " +
+                       it->second->path + " and " + run.path +
+                       "); give them distinct labels with a manifest's label column");
+  }
+  return runs;
+}
+
+}  // namespace frictionid::cli

@@ -1,0 +1,40 @@
+// The runs of `frictionid batch`: its INPUTS (CSV files, globs, directories, manifests) and
+// --group-by turned into a list of runs, sorted by label, before anything is fitted, so that a
+// bad input stops the batch at once with exit code 2.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <frictionid/dataset.hpp>
+#include <frictionid/io/summary_table.hpp>
+#include "cli/commands.hpp"
+
+namespace frictionid::cli {
+
+struct BatchRun {
+  std::string label;      // summary row label
+  std::string directory;  // runs/<directory>: the label with unsafe characters replaced
+  std::string path;       // the data file
+  FitOptions options;     // the command line's, with the manifest's per-run values applied
+  // With --group-by: the loaded file and the rows of this group (in file order); else null and
+  // the run reads `path` itself, so that a bad file is a failed run, not a failed batch.
+  std::shared_ptr<const Dataset> file_data;
+  std::vector<std::size_t> group_rows;
+  std::vector<Covariate> covariates;  // manifest columns and group values, as text
+  std::uint64_t key = 0;  // hash of the file's bytes, the group and the options (batch journal)
+};
+
+// Throws InputError (exit 2) for: an input that matches no CSV, a missing file, a manifest
+// with no `path` column or a path that does not exist (naming manifest:line:column), a bad
+// per-run option value, an unknown --group-by column, two runs with the same label.
+// `key_extra` (e.g. the per-run report kind) enters every run's key.
+std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, const FitOptions& o,
+                                      const std::string& group_by, const std::string& key_extra);
+
+// The rows `rows` of d, every column (extra ones too) in that order.
+Dataset select_rows(const Dataset& d, const std::vector<std::size_t>& rows);
+
+}  // namespace frictionid::cli

@@ -1,0 +1,200 @@
+// frictionid batch: fit many runs (files, manifest entries or groups of one file) on threads and
+// write one summary table. DIR is a plain directory, not a swapped report: it holds the journal
+// (appended as runs finish), runs/<label>/ (each file written atomically) and summary.csv and
+// summary.json, written atomically once every run has an outcome.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include <frictionid/fitter.hpp>
+#include <frictionid/io/dataset_csv.hpp>
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/io/report_writer.hpp>
+#include <frictionid/io/summary_table.hpp>
+#include "cli/batch_journal.hpp"
+#include "cli/batch_runs.hpp"
+#include "cli/commands.hpp"
+#include "cli/exit_codes.hpp"
+#include "cli/fit_options.hpp"
+#include "cli/option_parsers.hpp"
+#include "cli/terminal_observer.hpp"
+#include "io/atomic_file.hpp"
+#include "io/report_directory_lock.hpp"
+
+namespace frictionid::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using seconds = std::chrono::duration<double>;
+
+struct BatchContext {
+  const BatchOptions& options;
+  fs::path dir;
+  int fit_threads = 1;
+  const std::atomic<bool>* interrupted = nullptr;
+};
+
+void write_run_report(const BatchContext& c, const BatchRun& run, const FitResult& r,
+                      const Dataset& data) {
+  const fs::path dir = c.dir / "runs" / run.directory;
+  if (c.options.per_run_reports == "full") {
+    write_report(dir.string(), r, data);
+  } else if (c.options.per_run_reports == "json") {
+    fs::create_directories(dir);
+    const auto json =
+        report_json(r).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+    write_file_atomically((dir / "report.json").string(), json + "\n");
+  }
+}
+
+// One run's outcome: a failure of any kind is a failed row, never the end of the batch.
+SummaryRow fit_run(const BatchContext& c, const BatchRun& run) {
+  Dataset data;
+  try {
+    data = run.file_data ? select_rows(*run.file_data, run.group_rows)
+                         : load_dataset_csv(run.path, parse_column_map(run.options.columns));
+  } catch (const std::exception& e) {
+    return failed_summary_row(run.label, 0, e.what(), run.covariates);
+  }
+  auto covariates = dataset_covariates(data);
+  covariates.insert(covariates.end(), run.covariates.begin(), run.covariates.end());
+  try {
+    FitSettings s = fit_settings_from_options(run.options, run.options.model);
+    s.threads = c.fit_threads;
+    TerminalObserver observer(c.interrupted, /*progress=*/false);
+    const FitResult r = Fitter(s).fit(data, &observer);
+    write_run_report(c, run, r, data);
+    return summary_row(run.label, r, std::move(covariates));
+  } catch (const std::exception& e) {
+    return failed_summary_row(run.label, data.rows(), e.what(), std::move(covariates));
+  }
+}
+
+std::string duration_text(double s) {
+  char buf[32];
+  const long t = static_cast<long>(s + 0.5);
+  if (t >= 3600)
+    std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%ld:%02ld", t / 60, t % 60);
+  return buf;
+}
+
+}  // namespace
+
+int run_batch(const BatchOptions& o) {
+  const auto t_start = std::chrono::steady_clock::now();
+  if (o.jobs < 0) throw InputError("--jobs must be 0 (every hardware thread) or more");
+  (void)fit_settings_from_options(o.fit, o.fit.model);  // bad options fail before any work
+  const std::atomic<bool>* interrupted = install_interrupt_handler();
+  const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait);
+  std::error_code ec;
+  if (fs::exists(o.fit.report, ec) && !fs::is_directory(o.fit.report, ec))
+    throw InputError(o.fit.report, 0, 0, "--report: exists and is not a directory");
+
+  const std::vector<BatchRun> runs =
+      plan_batch_runs(o.inputs, o.fit, o.group_by, "reports=" + o.per_run_reports);
+  fs::create_directories(o.fit.report);
+  BatchJournal journal((fs::path(o.fit.report) / "journal.jsonl").string(), o.force);
+
+  std::vector<std::optional<SummaryRow>> rows(runs.size());
+  std::vector<std::size_t> pending;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (const SummaryRow* done = journal.finished(runs[i].label, runs[i].key))
+      rows[i] = *done;
+    else
+      pending.push_back(i);
+  }
+  const std::size_t from_journal = runs.size() - pending.size();
+
+  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t jobs =
+      std::clamp<std::size_t>(o.jobs > 0 ? static_cast<std::size_t>(o.jobs) : hardware, 1,
+                              std::max<std::size_t>(1, pending.size()));
+  // Several fits at once each take one thread; alone, a fit may use --threads. The results do
+  // not depend on either.
+  const BatchContext context{o, fs::path(o.fit.report), jobs == 1 ? o.fit.threads : 1, interrupted};
+  const bool progress = show_progress(o.fit);
+
+  std::atomic<std::size_t> next{0};
+  std::mutex mutex;  // guards the counters below, the progress line and first_error
+  std::size_t fitted = 0, failed = 0;
+  std::exception_ptr first_error;
+  const auto t_fits = std::chrono::steady_clock::now();
+  auto worker = [&] {
+    for (;;) {
+      if (interrupted->load()) return;
+      {
+        std::lock_guard<std::mutex> guard(mutex);
+        if (first_error) return;
+      }
+      const std::size_t k = next.fetch_add(1);
+      if (k >= pending.size()) return;
+      const BatchRun& run = runs[pending[k]];
+      SummaryRow row = fit_run(context, run);
+      if (interrupted->load()) return;  // a cancelled fit is not an outcome: fit it next time
+      try {
+        journal.record(run.key, row);
+      } catch (...) {
+        std::lock_guard<std::mutex> guard(mutex);
+        if (!first_error) first_error = std::current_exception();
+        return;
+      }
+      std::lock_guard<std::mutex> guard(mutex);
+      ++fitted;
+      if (!row.ok) ++failed;
+      rows[pending[k]] = std::move(row);
+      if (progress) {
+        const double elapsed = seconds(std::chrono::steady_clock::now() - t_fits).count();
+        const double eta = elapsed / fitted * (pending.size() - fitted);
+        std::fprintf(stderr, "\rfrictionid batch: %zu/%zu runs fitted, %zu failed, ETA %s   ",
+                     fitted, pending.size(), failed, duration_text(eta).c_str());
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t t = 1; t < jobs; ++t) threads.emplace_back(worker);
+  worker();
+  for (auto& t : threads) t.join();
+  if (progress && fitted > 0) std::fprintf(stderr, "\r%80s\r", "");
+  if (first_error) std::rethrow_exception(first_error);
+  if (interrupted->load()) {
+    std::fprintf(stderr,
+                 "frictionid: interrupted after %zu of %zu runs; they are in %s/journal.jsonl, "
+                 "run the same command again to fit the rest\n",
+                 fitted + from_journal, runs.size(), o.fit.report.c_str());
+    return kExitInterrupted;
+  }
+
+  std::vector<SummaryRow> table;
+  std::size_t failed_total = 0;
+  for (auto& row : rows) {
+    if (!row->ok) {
+      ++failed_total;
+      std::fprintf(stderr, "frictionid: run '%s' failed: %s\n", row->label.c_str(),
+                   row->error.c_str());
+    }
+    table.push_back(std::move(*row));
+  }
+  const fs::path dir(o.fit.report);
+  write_file_atomically((dir / "summary.csv").string(), summary_csv(table));
+  write_file_atomically(
+      (dir / "summary.json").string(),
+      summary_json(table).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) +
+          "\n");
+  std::printf(
+      "batch: %zu runs: %zu fitted, %zu from the journal, %zu failed; %.2f s, %zu at once\n",
+      runs.size(), fitted, from_journal, failed_total,
+      seconds(std::chrono::steady_clock::now() - t_start).count(), jobs);
+  std::printf("summary: %s/summary.csv\n", o.fit.report.c_str());
+  return failed_total > 0 ? kExitSomeRunsFailed : kExitOk;
+}
+
+}  // namespace frictionid::cli

@@ -1,0 +1,244 @@
+#include "cli/option_parsers.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <system_error>
+
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/io/pressure_law_reader.hpp>
+#include "io/text.hpp"
+
+namespace frictionid {
+
+namespace {
+
+using text::trim;
+
+bool is_name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+// The whole text, quoted, with control characters escaped.
+std::string quoted(std::string_view s) {
+  return text::shown(s, std::string_view::npos);
+}
+
+// Splits `spec` at commas into trimmed items; rejects an empty spec and empty items.
+std::vector<std::string_view> split_items(const std::string& option, const std::string& spec,
+                                          const char* expected) {
+  std::vector<std::string_view> items;
+  const std::string_view all(spec);
+  if (trim(all).empty())
+    throw InputError(option, 0, 0, "empty value; expected " + std::string(expected));
+  std::size_t pos = 0;
+  while (true) {
+    const std::size_t comma = all.find(',', pos);
+    const std::string_view item = trim(
+        all.substr(pos, comma == std::string_view::npos ? std::string_view::npos : comma - pos));
+    if (item.empty())
+      throw InputError(option, 0, 0,
+                       "empty entry (entry " + std::to_string(items.size() + 1) + ") in " +
+                           quoted(spec) + "; expected " + expected);
+    items.push_back(item);
+    if (comma == std::string_view::npos) break;
+    pos = comma + 1;
+  }
+  return items;
+}
+
+void check_name(const std::string& option, const std::string& spec, std::string_view name,
+                std::string_view item, const char* expected) {
+  if (name.empty())
+    throw InputError(option, 0, 0,
+                     "missing name before '=' in " + quoted(item) + " (in " + quoted(spec) +
+                         "); expected " + expected);
+  for (char c : name)
+    if (!is_name_char(c))
+      throw InputError(option, 0, 0,
+                       "invalid name " + quoted(name) + " in " + quoted(spec) +
+                           ": expected letters, digits and '_' only (format: " + expected + ")");
+}
+
+double number_in(const std::string& option, const std::string& spec, std::string_view name,
+                 std::string_view text, const char* role) {
+  double value = 0;
+  if (const char* why = text::parse_double_strict(text, value))
+    throw InputError(option, 0, 0,
+                     std::string(role) + " for " + quoted(name) + " is " + quoted(text) + ": " +
+                         why + "; expected a finite decimal number (in " + quoted(spec) + ")");
+  return value;
+}
+
+// "name=rest" -> (name, rest), with both trimmed.
+std::pair<std::string_view, std::string_view> split_assignment(const std::string& option,
+                                                               const std::string& spec,
+                                                               std::string_view item,
+                                                               const char* expected) {
+  const std::size_t eq = item.find('=');
+  if (eq == std::string_view::npos)
+    throw InputError(
+        option, 0, 0,
+        "missing '=' in " + quoted(item) + " (in " + quoted(spec) + "); expected " + expected);
+  const std::string_view name = trim(item.substr(0, eq));
+  check_name(option, spec, name, item, expected);
+  return {name, trim(item.substr(eq + 1))};
+}
+
+void check_unique(const std::string& option, const std::string& spec, std::set<std::string>& seen,
+                  std::string_view name) {
+  if (!seen.emplace(name).second)
+    throw InputError(option, 0, 0,
+                     "name " + quoted(name) + " is given more than once in " + quoted(spec));
+}
+
+}  // namespace
+
+double parse_number(const std::string& what, const std::string& text) {
+  double value = 0;
+  const std::string_view t = trim(text);
+  if (const char* why = text::parse_double_strict(t, value))
+    throw InputError(what, 0, 0,
+                     "got " + quoted(text) + " (" + why + "); expected a finite decimal number");
+  return value;
+}
+
+std::uint64_t parse_whole_number(const std::string& option, const std::string& text,
+                                 std::uint64_t lo, std::uint64_t hi) {
+  const std::string range =
+      "; expected a whole number from " + std::to_string(lo) + " to " + std::to_string(hi);
+  const std::string_view t = trim(text);
+  const bool digits_only =
+      !t.empty() && t.find_first_not_of("0123456789") == std::string_view::npos;
+  if (!digits_only) {
+    const bool negative = !t.empty() && t.front() == '-';
+    throw InputError(
+        option, 0, 0,
+        "got " + quoted(text) + (negative ? " (negative)" : " (not a whole number)") + range);
+  }
+  std::uint64_t value = 0;
+  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
+  if (ec == std::errc::result_out_of_range || value > hi)
+    throw InputError(option, 0, 0, "got " + quoted(text) + " (too large)" + range);
+  if (ec != std::errc() || end != t.data() + t.size())
+    throw InputError(option, 0, 0, "got " + quoted(text) + " (not a whole number)" + range);
+  if (value < lo) throw InputError(option, 0, 0, "got " + quoted(text) + " (too small)" + range);
+  return value;
+}
+
+std::map<std::string, double> parse_assignments(const std::string& option,
+                                                const std::string& spec) {
+  static const char* const kExpected = "name=value[,name=value...], e.g. f=0.8,kappa=1.2";
+  std::map<std::string, double> result;
+  std::set<std::string> seen;
+  for (const std::string_view item : split_items(option, spec, kExpected)) {
+    const auto [name, text] = split_assignment(option, spec, item, kExpected);
+    check_unique(option, spec, seen, name);
+    result.emplace(std::string(name), number_in(option, spec, name, text, "value"));
+  }
+  return result;
+}
+
+std::map<std::string, std::pair<double, double>> parse_bounds(const std::string& option,
+                                                              const std::string& spec) {
+  static const char* const kExpected = "name=lo:hi[,name=lo:hi...], e.g. f=0.1:2,h=-0.5:0.5";
+  std::map<std::string, std::pair<double, double>> result;
+  std::set<std::string> seen;
+  for (const std::string_view item : split_items(option, spec, kExpected)) {
+    const auto [name, range] = split_assignment(option, spec, item, kExpected);
+    check_unique(option, spec, seen, name);
+    const std::size_t colon = range.find(':');
+    if (colon == std::string_view::npos || range.find(':', colon + 1) != std::string_view::npos)
+      throw InputError(option, 0, 0,
+                       "bounds for " + quoted(name) + " are " + quoted(range) +
+                           "; expected exactly one ':' as in lo:hi (in " + quoted(spec) + ")");
+    const double lo = number_in(option, spec, name, trim(range.substr(0, colon)), "lower bound");
+    const double hi = number_in(option, spec, name, trim(range.substr(colon + 1)), "upper bound");
+    if (!(lo < hi))
+      throw InputError(option, 0, 0,
+                       "bounds for " + quoted(name) + " are " + quoted(range) +
+                           ": expected lo < hi (in " + quoted(spec) + ")");
+    result.emplace(std::string(name), std::make_pair(lo, hi));
+  }
+  return result;
+}
+
+std::vector<std::string> parse_name_list(const std::string& option, const std::string& spec) {
+  static const char* const kExpected = "name[,name...], e.g. T_x,M_z";
+  std::vector<std::string> result;
+  std::set<std::string> seen;
+  for (const std::string_view item : split_items(option, spec, kExpected)) {
+    check_name(option, spec, item, item, kExpected);
+    check_unique(option, spec, seen, item);
+    result.emplace_back(item);
+  }
+  return result;
+}
+
+model::PressureLaw<double> parse_pressure_option(const std::string& spec) {
+  try {
+    return parse_pressure_law(spec);
+  } catch (const InputError& e) {
+    if (!e.file().empty()) throw;
+    throw InputError("--pressure", 0, 0, e.what());
+  }
+}
+
+ColumnMap parse_column_map(const std::string& spec) {
+  static const std::string option = "--columns";
+  static const char* const kExpected =
+      "canonical=header[,canonical=header...], e.g. v_x=speed,omega=spin";
+  ColumnMap map;
+  if (trim(spec).empty()) return map;
+  const auto& canonical_names = dataset_column_names();
+  std::set<std::string> headers;
+  for (const std::string_view item : split_items(option, spec, kExpected)) {
+    const auto [canonical_view, header_view] = split_assignment(option, spec, item, kExpected);
+    const std::string canonical(canonical_view), header(header_view);
+    if (std::find(canonical_names.begin(), canonical_names.end(), canonical) ==
+        canonical_names.end()) {
+      std::string hint, list;
+      std::size_t best = std::numeric_limits<std::size_t>::max();
+      for (const auto& name : canonical_names) {
+        list += (list.empty() ? "" : ", ") + name;
+        if (const std::size_t d = text::misspelling_distance(canonical, name); d < best) {
+          best = d;
+          hint = "; did you mean '" + name + "'?";
+        }
+      }
+      throw InputError(option, 0, 0,
+                       "unknown canonical column " + quoted(canonical) + " in " + quoted(spec) +
+                           hint + " (expected one of: " + list + ")");
+    }
+    if (header.empty())
+      throw InputError(option, 0, 0,
+                       "empty header name for '" + canonical + "' in " + quoted(spec) +
+                           "; expected " + kExpected);
+    if (map.canonical_to_header.count(canonical))
+      throw InputError(option, 0, 0,
+                       "'" + canonical + "' is mapped more than once in " + quoted(spec));
+    if (!headers.insert(header).second)
+      throw InputError(option, 0, 0,
+                       "header name " + quoted(header) + " is mapped to more than one column in " +
+                           quoted(spec));
+    map.canonical_to_header.emplace(canonical, header);
+  }
+  // A header name may not stand for two canonical columns (v_x=omega leaves omega unmapped).
+  std::vector<std::string> effective;
+  for (const auto& name : canonical_names) {
+    const auto it = map.canonical_to_header.find(name);
+    effective.push_back(it == map.canonical_to_header.end() ? name : it->second);
+  }
+  for (std::size_t a = 0; a < effective.size(); ++a)
+    for (std::size_t b = a + 1; b < effective.size(); ++b)
+      if (effective[a] == effective[b])
+        throw InputError(option, 0, 0,
+                         "header name '" + effective[a] + "' would supply both " +
+                             canonical_names[a] + " and " + canonical_names[b] +
+                             "; map the other one to a different name");
+  return map;
+}
+
+}  // namespace frictionid

@@ -1,0 +1,33 @@
+#include "cli/terminal_observer.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+namespace frictionid::cli {
+
+TerminalObserver::TerminalObserver(const std::atomic<bool>* interrupted, bool progress)
+    : interrupted_(interrupted),
+      progress_(progress),
+      // Diagnostics for performance work: Ceres' time breakdown of the final local fit.
+      solver_report_(std::getenv("FRICTIONID_CERES_REPORT") != nullptr) {}
+
+TerminalObserver::~TerminalObserver() {
+  if (line_shown_) std::fprintf(stderr, "\r%80s\r", "");
+}
+
+void TerminalObserver::on_progress(const FitProgress& p) {
+  if (!progress_) return;
+  line_shown_ = true;
+  if (p.stage == FitStage::GlobalSearch)
+    std::fprintf(stderr, "\rfrictionid: global search %ld/%ld evaluations   ", p.done, p.total);
+  else
+    std::fprintf(stderr, "\rfrictionid: local fit %d/%d, iteration %ld, cost %.6e   ", p.start,
+                 p.starts, p.done, p.cost);
+}
+
+void TerminalObserver::on_log(const std::string& line) {
+  if (solver_report_) std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+}  // namespace frictionid::cli

@@ -1,0 +1,28 @@
+// The command line's FitObserver: a progress line on stderr (when asked for or on a terminal),
+// Ctrl-C as cancellation, and Ceres' full report on stderr when FRICTIONID_CERES_REPORT is set.
+#pragma once
+
+#include <atomic>
+
+#include <frictionid/fit_observer.hpp>
+
+namespace frictionid::cli {
+
+class TerminalObserver : public FitObserver {
+ public:
+  // interrupted: the flag install_interrupt_handler() returns. progress: print a progress line.
+  TerminalObserver(const std::atomic<bool>* interrupted, bool progress);
+  ~TerminalObserver() override;  // clears the progress line
+
+  void on_progress(const FitProgress& p) override;
+  void on_log(const std::string& line) override;
+  bool cancelled() const override { return interrupted_->load(); }
+
+ private:
+  const std::atomic<bool>* interrupted_;
+  bool progress_;
+  bool solver_report_;
+  bool line_shown_ = false;
+};
+
+}  // namespace frictionid::cli

@@ -1,0 +1,42 @@
+// Statistics of a finished fit (docs/physics.md §8): covariance from the whitened Jacobian,
+// standard errors and intervals, correlation, chi², information criteria, per-channel RMSE and
+// R², and the per-row predictions for plots.
+#pragma once
+
+#include <vector>
+
+#include <frictionid/fit_result.hpp>
+
+#include "identify/local_stage.hpp"
+
+namespace frictionid {
+
+// What an estimated noise model adds to the likelihood: sum of ln sigma_i^2 over the
+// observations, and its parameters.
+struct NoiseTerms {
+  double log_det = 0.0;
+  int parameters = 0;
+};
+
+// Fills res.parameters, correlation, cost, chi2, dof, reduced_chi2, aic, bic, the channel
+// summaries' rmse and r2, eps and fitted. Returns the free parameters the data do not determine.
+// Throws FitError when the model is not finite at x.
+std::vector<int> add_fit_statistics(const LocalProblem& lp, const ParamVector& x,
+                                    const ParamVector& start, const NoiseTerms& noise,
+                                    FitResult& res);
+
+// Whether x sits on a bound: within 1e-9 (1 + |bound|) of it, an absolute-plus-relative distance
+// that does not grow with the width of the box.
+bool at_bound(double x, double lower, double upper);
+
+// AIC and BIC of a least-squares fit with k free parameters and n observations. With known
+// sigmas (absolute_sigma) -2 log L = chi² + const, so AIC = chi² + 2k, BIC = chi² + k ln n;
+// with one sigma estimated from the residuals -2 log L = n ln(chi²/n) + const. An estimated
+// noise model adds its sum of ln sigma_i^2 to -2 log L and its parameters to k (noise).
+struct InformationCriteria {
+  double aic = 0.0, bic = 0.0;
+};
+InformationCriteria information_criteria(double chi2, std::size_t n, std::size_t k,
+                                         bool absolute_sigma, const NoiseTerms& noise = {});
+
+}  // namespace frictionid

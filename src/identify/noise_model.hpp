@@ -1,0 +1,42 @@
+// Per-channel noise models (docs/physics.md §8.10): the variance of a channel's measurement as a
+// function of its fitted value,
+//
+//   constant   sigma_i^2 = s_abs^2
+//   relative   sigma_i^2 = s_rel^2 max(|y_i|, floor)^2     floor = 1e-3 RMS(y): no infinite weight
+//   affine     sigma_i^2 = s_abs^2 + s_rel^2 y_i^2          (absolute and relative, in quadrature)
+//
+// estimated from residuals e_i at fitted values y_i by maximum likelihood of e_i ~ N(0, sigma_i^2)
+// (Fisher scoring, which for a variance function is iteratively reweighted least squares of e^2
+// on (1, y^2) with weights 1/sigma^4), and chosen by BIC when the kind is Auto.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <frictionid/fit_settings.hpp>
+
+namespace frictionid {
+
+struct ChannelNoise {
+  NoiseModelKind kind = NoiseModelKind::Constant;  // Constant, Relative or Affine
+  double s_abs = 0.0, s_rel = 0.0;
+  double floor = 0.0;        // the relative model's smallest |y|
+  double neg2_loglik = 0.0;  // sum of log(sigma_i^2) + e_i^2/sigma_i^2 at the estimate
+  double bic = 0.0;          // neg2_loglik + (parameters) ln n
+};
+
+// sigma_i of a channel with noise n at fitted value y.
+double noise_sigma(const ChannelNoise& n, double y);
+
+// Estimates the noise of one channel from its fitted values and residuals (equal length, >= 2).
+// kind Auto fits all three and keeps the smallest BIC. dof_factor >= 1 scales the variances to
+// correct the residuals' shrinkage by the fitted parameters (n / (n - k) for k parameters).
+ChannelNoise estimate_channel_noise(const std::vector<double>& fitted,
+                                    const std::vector<double>& residual, NoiseModelKind kind,
+                                    double dof_factor = 1.0);
+
+// "constant", "relative", "affine", "columns", "auto".
+const char* noise_model_name(NoiseModelKind kind);
+
+}  // namespace frictionid

@@ -1,0 +1,135 @@
+#include "identify/noise_reweighting.hpp"
+#include "identify/number_text.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <frictionid/fitter.hpp>
+
+#include "identify/fit_problem.hpp"
+#include "identify/noise_model.hpp"
+
+namespace frictionid {
+namespace {
+
+// Fitted values of every row (all channels) at x.
+std::array<std::vector<double>, kChannelCount> predictions(const LocalProblem& lp,
+                                                           const ParamVector& x) {
+  const FitSettings& s = *lp.settings;
+  const Dataset& d = *lp.rows.data;
+  const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(lp, x, false));
+  std::array<std::vector<double>, kChannelCount> out;
+  for (auto& v : out) v.resize(d.rows());
+  for (std::size_t i = 0; i < d.rows(); ++i) {
+    const auto r = model({d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]});
+    out[0][i] = r.T_x;
+    out[1][i] = r.T_y;
+    out[2][i] = r.M_z;
+    out[3][i] = r.M_roll;
+  }
+  return out;
+}
+
+std::string describe(const ChannelNoise& n) {
+  switch (n.kind) {
+    case NoiseModelKind::Relative:
+      return "noise model relative: sigma = " + number_text(n.s_rel) + " |fitted|";
+    case NoiseModelKind::Affine:
+      return "noise model affine: sigma^2 = " + number_text(n.s_abs) + "^2 + (" +
+             number_text(n.s_rel) + " fitted)^2";
+    default:
+      return "noise model constant: sigma = " + number_text(n.s_abs);
+  }
+}
+
+}  // namespace
+
+bool noise_estimated(const FitSettings& s, const Dataset& data, Channel c) {
+  if (s.noise_model == NoiseModelKind::Columns) return false;
+  if (s.noise_model == NoiseModelKind::Auto) return !data.has_sigma(c);
+  return true;
+}
+
+NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, FitResult& res,
+                             FitObserver* observer) {
+  const FitSettings& s = *lp.settings;
+  const Dataset& data = *lp.rows.data;
+  NoiseRefinement out;
+  out.weighted = data;
+  out.fit = start;
+  std::size_t nobs = 0;
+  for (const auto& cs : res.channel_summaries) nobs += cs.rows;
+  const std::size_t k = lp.free.size();
+  // The residuals of a fit are smaller than the noise by the parameters it absorbed.
+  const double dof_factor =
+      nobs > k ? static_cast<double>(nobs) / static_cast<double>(nobs - k) : 1.0;
+
+  std::array<ChannelNoise, kChannelCount> noise{}, previous{};
+  for (int it = 1; it <= s.noise_iterations; ++it) {
+    const auto fitted = predictions(lp, out.fit.x);
+    double change = 0.0;
+    out.log_det = 0.0;
+    out.parameters = 0;
+    for (auto& cs : res.channel_summaries) {
+      const Channel c = cs.channel;
+      const int ci = static_cast<int>(c);
+      auto& sigma = out.weighted.sigma[ci];
+      if (!noise_estimated(s, data, c)) continue;
+      std::vector<double> y, e;
+      for (std::size_t i = 0; i < data.rows(); ++i)
+        if (data.present[ci][i]) {
+          y.push_back(fitted[ci][i]);
+          e.push_back(fitted[ci][i] - data.value[ci][i]);
+        }
+      const NoiseModelKind kind =
+          s.noise_model == NoiseModelKind::Auto ? NoiseModelKind::Auto : s.noise_model;
+      noise[ci] = estimate_channel_noise(y, e, kind, dof_factor);
+      out.parameters += noise[ci].kind == NoiseModelKind::Affine ? 2 : 1;
+      // No sigma below rounding: noise-free data would otherwise divide by zero.
+      double peak = 0.0;
+      for (double v : y) peak = std::max(peak, std::fabs(v));
+      const double floor = std::max(1e-15 * peak, 1e-300);
+      sigma.assign(data.rows(), std::nan(""));
+      double largest = 0.0;
+      for (std::size_t i = 0; i < data.rows(); ++i)
+        if (data.present[ci][i]) {
+          sigma[i] = std::max(noise_sigma(noise[ci], fitted[ci][i]), floor);
+          out.log_det += 2.0 * std::log(sigma[i]);
+          largest = std::max(largest, sigma[i]);
+        }
+      // The channel's representative sigma: the RMS over its rows, relative to the largest.
+      double sum2 = 0.0;
+      for (std::size_t i = 0; i < data.rows(); ++i)
+        if (data.present[ci][i]) sum2 += (sigma[i] / largest) * (sigma[i] / largest);
+      cs.scale = largest * std::sqrt(sum2 / static_cast<double>(cs.rows));
+      cs.scale_source = describe(noise[ci]);
+      cs.noise = NoiseEstimate{noise[ci].kind, noise_model_name(noise[ci].kind), noise[ci].s_abs,
+                               noise[ci].s_rel, noise[ci].floor};
+      // Relative change of the variance function, measured at the channel's typical fitted
+      // value (its RMS), where both of the affine model's terms show.
+      double y2 = 0.0;
+      if (peak > 0.0)
+        for (double v : y) y2 += (v / peak) * (v / peak);
+      const double typical = peak * std::sqrt(y2 / static_cast<double>(y.size()));
+      const double now = noise_sigma(noise[ci], typical),
+                   before = noise_sigma(previous[ci], typical);
+      change = std::max(change, noise[ci].kind != previous[ci].kind
+                                    ? 1.0
+                                    : std::fabs(now - before) / std::max(now, 1e-300));
+    }
+    previous = noise;
+    res.noise_iterations = it;
+    LocalProblem lw = problem_on(lp, out.weighted);
+    for (Channel c : lw.rows.channels) lw.rows.scale[static_cast<int>(c)] = 1.0;
+    const LocalOutcome refit = local_fit(lw, out.fit.x, observer, it, s.noise_iterations);
+    if (observer && observer->cancelled()) throw FitError("interrupted");
+    if (!std::isfinite(refit.cost))
+      throw FitError("the fit weighted by the estimated noise model failed (" + refit.termination +
+                     ")");
+    out.fit = refit;
+    if (it > 1 && change < s.noise_tolerance) break;
+  }
+  return out;
+}
+
+}  // namespace frictionid

@@ -1,0 +1,29 @@
+// Fits with an estimated noise model (docs/physics.md §8.10): alternate between estimating each
+// channel's variance function from the residuals and refitting with the rows weighted by it,
+// until the noise parameters settle. The covariance of the result is then absolute.
+#pragma once
+
+#include <frictionid/fit_observer.hpp>
+#include <frictionid/fit_result.hpp>
+
+#include "identify/local_stage.hpp"
+
+namespace frictionid {
+
+// Whether channel c's noise is estimated (rather than taken from its sigma column).
+bool noise_estimated(const FitSettings& s, const Dataset& data, Channel c);
+
+struct NoiseRefinement {
+  Dataset weighted;      // the data with sigma columns from the noise model (every fitted channel)
+  LocalOutcome fit;      // the last local fit, on `weighted`
+  double log_det = 0.0;  // sum over observations of ln sigma_i^2 of the estimated channels
+  int parameters = 0;    // noise parameters estimated
+};
+
+// Starting from the fit `start` of lp (whitened by fixed channel scales), reweights until the
+// noise converges. Fills res.channel_summaries' noise, scale and scale_source, and
+// res.noise_iterations. Throws FitError when a refit fails or the observer cancels.
+NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, FitResult& res,
+                             FitObserver* observer);
+
+}  // namespace frictionid

@@ -1,0 +1,77 @@
+#include "io/html_page.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "io/report_parts.hpp"
+
+namespace frictionid::html {
+namespace {
+
+constexpr const char* kStyle = R"(
+body { font-family: sans-serif; max-width: 1080px; margin: 1.5em auto; padding: 0 1em;
+       color: #222; line-height: 1.4; }
+h1 { font-size: 1.6em; margin-bottom: 0.2em; }
+h2 { border-bottom: 1px solid #ddd; padding-bottom: 0.15em; margin-top: 1.6em; }
+.summary { color: #444; }
+.warnings { background: #fff4d6; border: 1px solid #e0b84c; padding: 0.4em 1em; }
+.ok { background: #e9f6e9; border: 1px solid #8cc68c; padding: 0.4em 1em; }
+.warnings h2 { margin-top: 0.4em; }
+nav { margin: 0.8em 0; }
+nav a { margin-right: 1em; }
+table { border-collapse: collapse; margin: 0.6em 0; }
+th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; }
+th { background: #f3f3f3; }
+table.sortable th { cursor: pointer; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; }
+table.heat td { text-align: center; min-width: 3.5em; }
+figure.plot { margin: 1em 0; }
+figure.plot svg { max-width: 100%; height: auto; border: 1px solid #eee; }
+figcaption { color: #444; font-size: 0.92em; max-width: 720px; }
+dt { font-weight: bold; margin-top: 0.5em; }
+)";
+
+// Sorting by a click on a column header, and each plot's rendered size written into the DOM
+// (data-rendered-size on its figure) so that a headless browser's --dump-dom shows it.
+constexpr const char* kScript = R"(
+for (const fig of document.querySelectorAll('figure.plot')) {
+  const box = fig.querySelector('svg').getBoundingClientRect();
+  fig.dataset.renderedSize = Math.round(box.width) + 'x' + Math.round(box.height);
+}
+for (const table of document.querySelectorAll('table.sortable')) {
+  table.querySelectorAll('th').forEach((th, col) => {
+    th.addEventListener('click', () => {
+      const body = table.tBodies[0];
+      const up = th.dataset.order !== 'up';
+      th.dataset.order = up ? 'up' : 'down';
+      const key = (tr) => {
+        const td = tr.cells[col];
+        return td.dataset.value !== undefined ? Number(td.dataset.value) : td.textContent;
+      };
+      const rows = Array.from(body.rows);
+      rows.sort((a, b) => (key(a) < key(b) ? -1 : key(a) > key(b) ? 1 : 0) * (up ? 1 : -1));
+      rows.forEach((tr) => body.appendChild(tr));
+    });
+  });
+}
+)";
+
+}  // namespace
+
+std::string page_start(const std::string& escaped_title) {
+  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+         "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" +
+         escaped_title + "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n";
+}
+
+std::string page_end() {
+  return std::string("<script>") + kScript + "</script>\n</body>\n</html>\n";
+}
+
+std::string num_cell(const std::optional<double>& x) {
+  if (!x || !std::isfinite(*x)) return "<td class=\"num\">" + num(x) + "</td>";
+  return fmt::format("<td class=\"num\" data-value=\"{}\">{}</td>", *x, num(*x));
+}
+
+}  // namespace frictionid::html

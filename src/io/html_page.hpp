@@ -1,0 +1,20 @@
+// What report.html and compare.html share: the page frame (inline style, the small inline
+// script) and number cells. Nothing on a page is fetched: no URL, no external script or font.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace frictionid::html {
+
+// Doctype, head with title and inline style, opening <body>.
+std::string page_start(const std::string& escaped_title);
+// The inline script (plot sizes into the DOM, sortable tables), closing </body></html>.
+std::string page_end();
+
+// A table cell holding a number: the shown text rounded (num in io/report_parts.hpp), the exact
+// value (shortest text that reads back to the same double, as in the JSON reports) in data-value
+// for sorting and checks.
+std::string num_cell(const std::optional<double>& x);
+
+}  // namespace frictionid::html

@@ -1,0 +1,173 @@
+// report.md: the fit in words and tables, linking the plots that exist.
+#include <frictionid/io/report_writer.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "io/report_parts.hpp"
+
+namespace frictionid {
+namespace {
+
+// Markdown helpers
+
+std::string fixed2(double x) {
+  if (!std::isfinite(x)) return "—";
+  std::string s = fmt::format("{:.2f}", x);
+  if (s == "-0.00") s = "0.00";  // a tiny negative correlation is not worth a sign
+  return s;
+}
+
+// Text placed inside a table cell: a '|' would end the cell, a newline the row.
+std::string cell(const std::string& s) {
+  std::string out;
+  for (char ch : s) {
+    if (ch == '|')
+      out += "\\|";
+    else if (ch == '\n' || ch == '\r')
+      out += ' ';
+    else
+      out += ch;
+  }
+  return out;
+}
+
+// Text on one Markdown line (a bullet): a newline would start a new paragraph.
+std::string one_line(const std::string& s) {
+  std::string out = s;
+  std::replace(out.begin(), out.end(), '\n', ' ');
+  std::replace(out.begin(), out.end(), '\r', ' ');
+  return out;
+}
+
+}  // namespace
+
+std::string report_markdown(const FitResult& r) {
+  return report_markdown(r, default_plot_files(r));
+}
+
+std::string report_markdown(const FitResult& r, const std::vector<std::string>& plot_files) {
+  std::string md;
+  auto line = [&md](const std::string& s) { (md += s) += '\n'; };
+
+  line(fmt::format("# frictionid fit: model {}, pressure {}", one_line(r.model),
+                   one_line(r.pressure)));
+  line("");
+  line(fmt::format("{} rows; fitted channels: {}; loss: {}.", r.rows, join_channels(r.channels),
+                   r.loss));
+  line("");
+  line("The same report on one page, plots inline: [report.html](report.html).");
+  line("");
+
+  line("## Parameters");
+  line("");
+  const bool boot = r.bootstrap_replicates > 0;
+  auto interval = [](const std::optional<std::array<double, 2>>& ci) {
+    return ci ? fmt::format("[{}, {}]", num((*ci)[0]), num((*ci)[1])) : std::string("—");
+  };
+  line(std::string("| name | value ± stderr | 95% CI | sandwich stderr |") +
+       (boot ? " bootstrap stderr | bootstrap 95% CI |" : "") + " initial | bounds | note |");
+  line(std::string("|---|---|---|---|") + (boot ? "---|---|" : "") + "---|---|---|");
+  for (const auto& p : r.parameters) {
+    std::string value = num(p.value);
+    if (p.std_error) value += " ± " + num(p.std_error);
+    std::string row = fmt::format("| {} | {} | {} | {} |", cell(p.name), value,
+                                  interval(chosen_interval(r, p)), num(p.std_error_sandwich));
+    if (boot)
+      row += fmt::format(" {} | {} |", num(p.std_error_bootstrap), interval(p.ci95_bootstrap));
+    line(row +
+         fmt::format(" {} | [{}, {}] | {} |", num(p.initial), num(p.lower), num(p.upper),
+                     parameter_note(p, "at bound (stderr not meaningful)", "not determined")));
+  }
+  line("");
+  line(std::string("95% CI: ") + interval_caption(r) + "." +
+       (boot ? fmt::format(" Bootstrap: {} wild (Rademacher) refits, percentile interval.",
+                           r.bootstrap_replicates)
+             : ""));
+  line("");
+
+  line("## Statistics");
+  line("");
+  line("| quantity | value |");
+  line("|---|---|");
+  line(fmt::format("| cost (½ Σ loss of whitened residuals) | {} |", num(r.cost)));
+  line(fmt::format("| χ² | {} |", num(r.chi2)));
+  line(fmt::format("| residuals | {} |", r.residuals));
+  line(fmt::format("| degrees of freedom | {} |", r.dof));
+  line(fmt::format("| reduced χ² | {} |", num(r.reduced_chi2)));
+  line(fmt::format("| AIC | {} |", num(r.aic)));
+  line(fmt::format("| BIC | {} |", num(r.bic)));
+  line(fmt::format("| loss | {} |", cell(r.loss)));
+  line(fmt::format("| covariance | {} |", r.covariance_scaled_by_reduced_chi2
+                                              ? "scaled by the reduced χ²"
+                                              : "from absolute σ (not rescaled)"));
+  line("");
+  if (!r.channel_summaries.empty()) {
+    line("| channel | rows | RMSE | R² | scale σ | scale source |");
+    line("|---|---|---|---|---|---|");
+    for (const auto& s : r.channel_summaries)
+      line(fmt::format("| {} | {} | {} | {} | {} | {} |", channel_name(s.channel), s.rows,
+                       num(s.rmse), num(s.r2), num(s.scale), cell(s.scale_source)));
+    line("");
+  }
+
+  line("## Global search and solver");
+  line("");
+  line(fmt::format("- global search: {}, seed {}, {} evaluations on {} subsampled rows",
+                   r.global.algorithm.empty() ? "none" : r.global.algorithm, r.global.seed,
+                   r.global.evaluations, r.global.subsample_rows));
+  line(fmt::format("- local starts: {}, of which {} reached the best cost{}", r.global.starts,
+                   r.global.reached_best,
+                   r.global.local_fits_on_subsample
+                       ? " (fitted on the subsample; the best was then refined on all rows)"
+                       : ""));
+  line(fmt::format("- solver: {} iterations, termination {}, {}", r.solver.iterations,
+                   r.solver.termination.empty() ? "—" : r.solver.termination,
+                   r.solver.converged ? "converged" : "NOT converged"));
+  line("");
+
+  line("## Warnings");
+  line("");
+  if (r.warnings.empty()) line("- none");
+  for (const auto& w : r.warnings) line("- " + one_line(w));
+  line("");
+
+  line("## Correlation");
+  line("");
+  if (r.correlation_names.empty()) {
+    line("No free parameter with a standard error.");
+  } else {
+    std::string head = "| |", rule = "|---|";
+    for (const auto& n : r.correlation_names) head += " " + cell(n) + " |", rule += "---|";
+    line(head);
+    line(rule);
+    for (std::size_t i = 0; i < r.correlation_names.size(); ++i) {
+      std::string row = "| " + cell(r.correlation_names[i]) + " |";
+      for (std::size_t k = 0; k < r.correlation_names.size(); ++k) {
+        const bool have = i < r.correlation.size() && k < r.correlation[i].size();
+        row += " " + (have ? fixed2(r.correlation[i][k]) : std::string("—")) + " |";
+      }
+      line(row);
+    }
+  }
+  line("");
+
+  line("## Plots");
+  line("");
+  if (plot_files.empty())
+    line("No plots were produced (no fitted channel has predictions to plot).");
+  for (const auto& f : plot_files) {
+    const std::string alt =
+        f.size() > 4 && f.compare(f.size() - 4, 4, ".svg") == 0 ? f.substr(0, f.size() - 4) : f;
+    line(fmt::format("![{}]({})", alt, f));
+    line("");
+  }
+  return md;
+}
+
+}  // namespace frictionid

@@ -1,0 +1,88 @@
+// The pieces write_report assembles (include/frictionid/io/report_writer.hpp): plots, the HTML
+// page and the channel lookup they share with the Markdown report.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <frictionid/dataset.hpp>
+#include <frictionid/fit_result.hpp>
+#include <frictionid/io/report_writer.hpp>
+#include <frictionid/model_comparison.hpp>
+
+namespace frictionid {
+
+// The 95 % interval of p that r's interval method puts first (ci95 for "model", else the
+// sandwich or profile interval), and the words for its caption.
+const std::optional<std::array<double, 2>>& chosen_interval(const FitResult& r,
+                                                            const ParameterEstimate& p);
+const char* interval_caption(const FitResult& r);
+
+// %.6g-style; never prints "nan" (the reports promise no NaN text): "—" for NaN or absent.
+std::string num(double x);
+std::string num(const std::optional<double>& x);
+
+// The channel names joined by ", "; "none" for no channel.
+std::string join_channels(const std::vector<Channel>& cs);
+
+// The note column of a parameter table: "fixed", at a bound, not determined by the data, joined
+// by "; ". `at_bound` and `undetermined` are the words a report uses for the last two.
+std::string parameter_note(const ParameterEstimate& p, const char* at_bound,
+                           const char* undetermined);
+
+// The summary of channel c in r, or nullptr when c was not fitted.
+const ChannelSummary* find_summary(const FitResult& r, Channel c);
+
+// The plot files make_plots gives for r with default options: collapse_<c>.svg, fit_<c>.svg and
+// residuals_<c>.svg for every fitted channel.
+std::vector<std::string> default_plot_files(const FitResult& r);
+
+// Rows kept in plots: with more than kMaxPlotRows rows, about one in plot_step(rows), chosen by a
+// fixed hash of the row number. Every k-th row would alias with a periodic test design (loads
+// or slip angles cycling row by row) and show only some of its levels; the hash does not, and
+// the same rows give the same plots.
+inline constexpr std::size_t kMaxPlotRows = 4000;  // ~4000 dots already fill a 720x440 plot
+std::size_t plot_step(std::size_t rows);
+bool plotted_row(std::size_t row, std::size_t step);
+// The sentence plots and captions use, e.g. "about 1 in 25 of 100000 rows plotted (...)"; empty
+// when every row is plotted.
+std::string plotted_rows_note(std::size_t rows);
+
+// One plot of the report: written as `file` next to report.md and inlined in report.html.
+struct ReportPlot {
+  std::string file;     // e.g. "collapse_T_x.svg"
+  std::string heading;  // the section it belongs to, e.g. "T_x" or "T_x against slip_angle"
+  std::string caption;  // what is drawn and how rows were chosen
+  std::string svg;      // an <svg> element (io/svg_plot.hpp), no namespace attribute
+};
+
+// Every plot of the report, in report order (per channel: collapse, fit, residuals; then the
+// --plot-x plots). Channels without predictions are left out. Throws std::invalid_argument when
+// a column named in `o` is not in the dataset or (for plot_x) not numeric.
+std::vector<ReportPlot> make_plots(const FitResult& r, const Dataset& d, const ReportOptions& o);
+
+// A plot as an HTML <figure>: the inline SVG and a caption linking its file (no final newline).
+std::string plot_figure(const ReportPlot& p);
+
+// report.html from the plots make_plots gave.
+std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots);
+
+// Per channel every compared model over the measured data (compare_<channel>.svg), and
+// compare.html from them.
+std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d);
+std::string compare_html_page(const ModelComparison& c, const std::vector<ReportPlot>& plots);
+
+// report.json, report.md, report.html and the plots written into dir (which exists; no
+// transaction, the caller holds one); returns the file names relative to dir in that order.
+std::vector<std::string> write_report_files(const std::filesystem::path& dir, const FitResult& r,
+                                            const Dataset& d, const ReportOptions& o = {});
+
+// Writes STEM.md, STEM.html and the plots as SVG files into the staging directory dir, and
+// appends their names to `names`.
+void write_staged_pages(const std::filesystem::path& dir, const std::string& stem,
+                        const std::string& markdown, const std::string& html,
+                        const std::vector<ReportPlot>& plots, std::vector<std::string>& names);
+
+}  // namespace frictionid

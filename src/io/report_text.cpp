@@ -1,0 +1,48 @@
+// Text the reports share: numbers, channel lists, parameter notes and plot figures.
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "io/report_parts.hpp"
+#include "io/svg_plot.hpp"
+
+namespace frictionid {
+
+std::string num(double x) {
+  if (std::isnan(x)) return "—";
+  if (std::isinf(x)) return x > 0 ? "+inf" : "-inf";
+  return fmt::format("{:.6g}", x);
+}
+std::string num(const std::optional<double>& x) {
+  return x ? num(*x) : "—";
+}
+
+std::string join_channels(const std::vector<Channel>& cs) {
+  std::string out;
+  for (std::size_t i = 0; i < cs.size(); ++i)
+    out += (i ? ", " : "") + std::string(channel_name(cs[i]));
+  return out.empty() ? "none" : out;
+}
+
+std::string parameter_note(const ParameterEstimate& p, const char* at_bound,
+                           const char* undetermined) {
+  std::vector<std::string> notes;
+  if (p.fixed) notes.emplace_back("fixed");
+  if (p.at_bound) notes.emplace_back(at_bound);
+  if (!p.fixed && !p.at_bound && !p.std_error) notes.emplace_back(undetermined);
+  std::string out;
+  for (std::size_t i = 0; i < notes.size(); ++i) out += (i ? "; " : "") + notes[i];
+  return out;
+}
+
+std::string plot_figure(const ReportPlot& p) {
+  using svg::escape;
+  return fmt::format("<figure class=\"plot\" data-file=\"{}\">\n", escape(p.file)) + p.svg +
+         fmt::format("\n<figcaption>{} File: <a href=\"{}\">{}</a>.</figcaption>\n</figure>",
+                     escape(p.caption), escape(p.file), escape(p.file));
+}
+
+}  // namespace frictionid

@@ -1,0 +1,347 @@
+#include "io/svg_plot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <limits>
+
+#include <fmt/format.h>
+
+namespace frictionid::svg {
+namespace {
+
+constexpr double kLeft = 74, kRight = 18, kTitleLine = 22, kNoteLine = 15;
+constexpr double kLegendRow = 18, kBelowAxis = 44;
+constexpr double kCharWidth = 6.6;  // average width of an 11 px sans-serif character
+
+// Pixel coordinates with one decimal: enough for a 3 px dot, and byte-stable. Written by hand:
+// a report draws some 10^5 coordinates, and this is several times faster than fmt here.
+void append_px(std::string& out, double v) {
+  if (!(std::abs(v) < 1e9)) v = 0;  // only an overflowing range gets here; never print "nan"
+  long long tenths = std::llround(v * 10);
+  if (tenths < 0) out += '-', tenths = -tenths;
+  char digits[24];
+  int n = 0;
+  for (long long whole = tenths / 10; n == 0 || whole > 0; whole /= 10)
+    digits[n++] = static_cast<char>('0' + whole % 10);
+  while (n > 0) out += digits[--n];
+  out += '.';
+  out += static_cast<char>('0' + tenths % 10);
+}
+std::string px(double v) {
+  std::string out;
+  append_px(out, v);
+  return out;
+}
+
+struct Axis {
+  bool log = false;
+  double lo = 0, hi = 1;    // data units
+  double from = 0, to = 1;  // pixels
+  double f(double v) const { return log ? std::log10(v) : v; }
+  double map(double v) const { return from + (f(v) - f(lo)) / (f(hi) - f(lo)) * (to - from); }
+  bool accepts(double v) const { return std::isfinite(v) && (!log || v > 0); }
+  bool inside(double v) const { return accepts(v) && v >= lo && v <= hi; }
+};
+
+// The range of the accepted values, widened by `pad` of its span on each side (in log units on a
+// log axis); a single value or no value still gives a non-empty range.
+std::pair<double, double> padded_range(std::vector<double> values, bool log, double pad) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (double v : values)
+    if (std::isfinite(v) && (!log || v > 0)) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (!(lo <= hi)) return log ? std::make_pair(1.0, 10.0) : std::make_pair(0.0, 1.0);
+  if (log) {
+    double a = std::log10(lo), b = std::log10(hi);
+    if (b - a < 1e-9) a -= 0.5, b += 0.5;
+    const double m = (b - a) * pad;
+    return {std::pow(10.0, a - m), std::pow(10.0, b + m)};
+  }
+  if (hi - lo <= 1e-12 * std::max(std::abs(lo), std::abs(hi))) {
+    const double half = lo == 0 ? 1.0 : std::abs(lo) * 0.1;
+    lo -= half, hi += half;
+  }
+  const double m = (hi - lo) * pad;
+  return {lo - m, hi + m};
+}
+
+struct LegendItem {
+  const Series* series;
+  double x, y;
+};
+
+// Legend layout: items left to right, wrapping into rows below the axes.
+std::vector<LegendItem> legend_layout(const Plot& p) {
+  std::vector<LegendItem> legend;
+  const double usable = p.width - kLeft - kRight;
+  double x = 0, row = 0;
+  for (const auto& s : p.series) {
+    if (s.label.empty()) continue;
+    const double w = 26 + kCharWidth * static_cast<double>(s.label.size()) + 14;
+    if (x > 0 && x + w > usable) x = 0, ++row;
+    legend.push_back({&s, x, row});
+    x += w;
+  }
+  return legend;
+}
+
+// The data ranges of both axes: every series, the x markers (unless x_range is given) and the
+// y reference line.
+void set_ranges(const Plot& p, Axis& ax, Axis& ay) {
+  std::vector<double> xs, ys;
+  for (const auto& s : p.series) {
+    xs.insert(xs.end(), s.x.begin(), s.x.end());
+    ys.insert(ys.end(), s.y.begin(), s.y.end());
+  }
+  if (p.x_range) {
+    std::tie(ax.lo, ax.hi) = *p.x_range;
+  } else {
+    for (const auto& m : p.x_markers) xs.push_back(m.x);
+    std::tie(ax.lo, ax.hi) = padded_range(std::move(xs), ax.log, 0.03);
+  }
+  if (p.y_reference) ys.push_back(*p.y_reference);
+  std::tie(ay.lo, ay.hi) = padded_range(std::move(ys), ay.log, 0.06);
+}
+
+// The <svg> start tag, background, title and notes.
+void append_header(std::string& o, const Plot& p) {
+  const double W = p.width;
+  o += fmt::format(
+      "<svg viewBox=\"0 0 {0} {1}\" width=\"{0}\" height=\"{1}\" font-family=\"sans-serif\" "
+      "font-size=\"11\">\n<rect width=\"{0}\" height=\"{1}\" fill=\"#ffffff\"/>\n",
+      p.width, p.height);
+  o += fmt::format(
+      "<text x=\"{}\" y=\"17\" text-anchor=\"middle\" font-size=\"14\" "
+      "font-weight=\"bold\">{}</text>\n",
+      px(W / 2), escape(p.title));
+  for (std::size_t i = 0; i < p.notes.size(); ++i)
+    o += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"#555555\">{}</text>\n",
+                     px(W / 2), px(kTitleLine + 12 + kNoteLine * static_cast<double>(i)),
+                     escape(p.notes[i]));
+}
+
+// Grid, tick labels, the frame and the axis labels.
+void append_axes(std::string& o, const Plot& p, const Axis& ax, const Axis& ay) {
+  const auto xt = ax.log ? log_ticks(ax.lo, ax.hi) : linear_ticks(ax.lo, ax.hi, 7);
+  const auto yt = ay.log ? log_ticks(ay.lo, ay.hi) : linear_ticks(ay.lo, ay.hi, 6);
+  o += "<g stroke=\"#e3e3e3\" stroke-width=\"1\">\n";
+  for (double t : xt)
+    o += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\"/>\n", px(ax.map(t)),
+                     px(ay.from), px(ay.to));
+  for (double t : yt)
+    o += fmt::format("<line x1=\"{1}\" y1=\"{0}\" x2=\"{2}\" y2=\"{0}\"/>\n", px(ay.map(t)),
+                     px(ax.from), px(ax.to));
+  o += "</g>\n<g fill=\"#333333\">\n";
+  for (double t : xt)
+    o += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", px(ax.map(t)),
+                     px(ay.from + 15), tick_label(t));
+  for (double t : yt)
+    o += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", px(ax.from - 5),
+                     px(ay.map(t) + 4), tick_label(t));
+  o += "</g>\n";
+  o += fmt::format(
+      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#888888\"/>\n",
+      px(ax.from), px(ay.to), px(ax.to - ax.from), px(ay.from - ay.to));
+  o += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"12\">{}</text>\n",
+                   px((ax.from + ax.to) / 2), px(ay.from + 33), escape(p.x_label));
+  o += fmt::format(
+      "<text transform=\"translate(16 {}) rotate(-90)\" text-anchor=\"middle\" "
+      "font-size=\"12\">{}</text>\n",
+      px((ay.from + ay.to) / 2), escape(p.y_label));
+}
+
+// The dashed y reference line and x markers that fall inside the axes.
+void append_markers(std::string& o, const Plot& p, const Axis& ax, const Axis& ay) {
+  if (p.y_reference && ay.inside(*p.y_reference))
+    o += fmt::format(
+        "<line x1=\"{1}\" y1=\"{0}\" x2=\"{2}\" y2=\"{0}\" stroke=\"#777777\" "
+        "stroke-dasharray=\"5 4\"/>\n",
+        px(ay.map(*p.y_reference)), px(ax.from), px(ax.to));
+  for (const auto& m : p.x_markers) {
+    if (!ax.inside(m.x)) continue;
+    const std::string x = px(ax.map(m.x));
+    o += fmt::format(
+        "<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke=\"#999999\" "
+        "stroke-dasharray=\"3 3\"/>\n<text x=\"{0}\" y=\"{3}\" text-anchor=\"middle\" "
+        "fill=\"#555555\">{4}</text>\n",
+        x, px(ay.from), px(ay.to), px(ay.to - 3), escape(m.label));
+  }
+}
+
+// Dots are zero-length round-capped subpaths: one path element per series, and a dot that lands
+// in the same half-pixel cell as an earlier one of its series is left out (it would be drawn
+// over it).
+void append_dots(std::string& o, const Plot& p, const Series& s, const Axis& ax, const Axis& ay) {
+  const double W = p.width, H = p.height;
+  const std::size_t n = std::min(s.x.size(), s.y.size());
+  o += fmt::format(
+      "<path fill=\"none\" stroke=\"{}\" stroke-width=\"3.4\" stroke-linecap=\"round\" "
+      "stroke-opacity=\"0.75\" d=\"",
+      escape(s.color));
+  // One bit per half-pixel cell of the whole image.
+  const auto cols = static_cast<std::size_t>(2 * W) + 1, rows = static_cast<std::size_t>(2 * H) + 1;
+  std::vector<bool> taken(cols * rows, false);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!ax.inside(s.x[i]) || !ay.inside(s.y[i])) continue;
+    const double x = ax.map(s.x[i]), y = ay.map(s.y[i]);
+    if (!(x >= 0 && x < W && y >= 0 && y < H)) continue;  // e.g. a range that overflowed
+    const std::size_t cell =
+        static_cast<std::size_t>(2 * y) * cols + static_cast<std::size_t>(2 * x);
+    if (taken[cell]) continue;
+    taken[cell] = true;
+    o += 'M';
+    append_px(o, x);
+    o += ' ';
+    append_px(o, y);
+    o += "h0";
+  }
+  o += "\"/>\n";
+}
+
+// A line through the points inside the axes, lifted where a point is outside.
+void append_line(std::string& o, const Series& s, const Axis& ax, const Axis& ay) {
+  const std::size_t n = std::min(s.x.size(), s.y.size());
+  o += fmt::format(
+      "<path fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\" stroke-linejoin=\"round\" "
+      "d=\"",
+      escape(s.color));
+  bool pen_down = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!ax.inside(s.x[i]) || !ay.inside(s.y[i])) {
+      pen_down = false;
+      continue;
+    }
+    o += pen_down ? 'L' : 'M';
+    append_px(o, ax.map(s.x[i]));
+    o += ' ';
+    append_px(o, ay.map(s.y[i]));
+    pen_down = true;
+  }
+  o += "\"/>\n";
+}
+
+// The legend below the x label.
+void append_legend(std::string& o, const Plot& p, const std::vector<LegendItem>& legend,
+                   double legend_rows) {
+  const double H = p.height;
+  for (const auto& item : legend) {
+    const double x = kLeft + item.x, y = H - kLegendRow * (legend_rows - item.y) + 2;
+    if (item.series->mark == Mark::Dots)
+      o += fmt::format("<circle cx=\"{}\" cy=\"{}\" r=\"3.2\" fill=\"{}\"/>\n", px(x + 10),
+                       px(y - 4), escape(item.series->color));
+    else
+      o += fmt::format(
+          "<line x1=\"{0}\" y1=\"{2}\" x2=\"{1}\" y2=\"{2}\" stroke=\"{3}\" stroke-width=\"2\"/>\n",
+          px(x), px(x + 20), px(y - 4), escape(item.series->color));
+    o += fmt::format("<text x=\"{}\" y=\"{}\">{}</text>\n", px(x + 26), px(y),
+                     escape(item.series->label));
+  }
+}
+
+}  // namespace
+
+std::string escape(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string tick_label(double v) {
+  if (v == 0) return "0";
+  return fmt::format("{:.4g}", v);
+}
+
+std::vector<double> linear_ticks(double lo, double hi, int target) {
+  std::vector<double> ticks;
+  if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi)) return ticks;
+  const double raw = (hi - lo) / std::max(target, 1);
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = 10 * mag;
+  for (double m : {1.0, 2.0, 5.0})
+    if (m * mag >= raw) {
+      step = m * mag;
+      break;
+    }
+  const auto first = static_cast<long long>(std::ceil(lo / step - 1e-9));
+  const auto last = static_cast<long long>(std::floor(hi / step + 1e-9));
+  for (long long i = first; i <= last; ++i) ticks.push_back(static_cast<double>(i) * step);
+  return ticks;
+}
+
+std::vector<double> log_ticks(double lo, double hi) {
+  std::vector<double> ticks;
+  if (!(lo > 0) || !(hi > lo) || !std::isfinite(hi)) return ticks;
+  const int d0 = static_cast<int>(std::floor(std::log10(lo))) - 1;
+  const int d1 = static_cast<int>(std::ceil(std::log10(hi))) + 1;
+  const int stride = d1 - d0 > 16 ? 2 : 1;  // keep labels apart over very wide ranges
+  for (int k = d0; k <= d1; ++k)
+    if (k % stride == 0)
+      if (const double t = std::pow(10.0, k); t >= lo && t <= hi) ticks.push_back(t);
+  if (ticks.size() < 3) {
+    ticks.clear();
+    for (int k = d0; k <= d1; ++k)
+      for (double m : {1.0, 2.0, 5.0})
+        if (const double t = m * std::pow(10.0, k); t >= lo && t <= hi) ticks.push_back(t);
+  }
+  return ticks;
+}
+
+std::string standalone_file(const std::string& svg_element) {
+  std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  if (svg_element.compare(0, 4, "<svg") == 0)
+    out += "<svg xmlns=\"http://www.w3.org/2000/svg\"" + svg_element.substr(4);
+  else
+    out += svg_element;
+  return out + "\n";
+}
+
+std::string render(const Plot& p) {
+  const double W = p.width, H = p.height;
+
+  // Legend layout first: its rows take space below the axes.
+  const std::vector<LegendItem> legend = legend_layout(p);
+  const double legend_rows = legend.empty() ? 0 : legend.back().y + 1;
+  const double top = kTitleLine + kNoteLine * static_cast<double>(p.notes.size()) + 14;
+  const double bottom = kBelowAxis + kLegendRow * legend_rows + 4;
+
+  Axis ax, ay;
+  ax.log = p.log_x, ay.log = p.log_y;
+  ax.from = kLeft, ax.to = W - kRight;
+  ay.from = H - bottom, ay.to = top;
+  set_ranges(p, ax, ay);
+
+  std::string o;
+  o.reserve(4096);
+  append_header(o, p);
+  append_axes(o, p, ax, ay);
+  append_markers(o, p, ax, ay);
+  for (const auto& s : p.series) {
+    if (s.mark == Mark::Dots)
+      append_dots(o, p, s, ax, ay);
+    else
+      append_line(o, s, ax, ay);
+  }
+  append_legend(o, p, legend, legend_rows);
+  o += "</svg>";
+  return o;
+}
+
+}  // namespace frictionid::svg

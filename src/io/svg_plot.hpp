@@ -1,0 +1,55 @@
+// A small SVG plot writer for the reports: dots and lines over linear or logarithmic axes, with
+// ticks, grid, legend and dashed markers. Output is a pure function of the Plot (fixed number
+// formatting, no ids, no clock), so the same plot is the same bytes.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace frictionid::svg {
+
+enum class Mark { Dots, Line };
+
+struct Series {
+  std::string label;  // legend text; empty keeps the series out of the legend
+  std::string color;  // CSS colour, e.g. "#1f77b4"
+  Mark mark = Mark::Dots;
+  std::vector<double> x, y;  // a pair that is not finite (or <= 0 on a log axis) is skipped
+};
+
+// A dashed vertical line at x with a label at its top, e.g. the edge where eps = 0 rows sit.
+struct XMarker {
+  double x = 0.0;
+  std::string label;
+};
+
+struct Plot {
+  std::string title;
+  std::vector<std::string> notes;  // smaller lines under the title
+  std::string x_label, y_label;
+  bool log_x = false, log_y = false;
+  std::optional<std::pair<double, double>> x_range;  // default: the data's range
+  std::optional<double> y_reference;                 // dashed horizontal line, e.g. 0
+  std::vector<XMarker> x_markers;
+  std::vector<Series> series;
+  int width = 720, height = 440;
+};
+
+// The plot as an <svg> element without a namespace attribute (for inline use in HTML).
+std::string render(const Plot& p);
+
+// An <svg> element from render() as a standalone .svg file (XML declaration and namespace).
+std::string standalone_file(const std::string& svg_element);
+
+// Tick positions: 1, 2, 5 times a power of ten covering [lo, hi] with about `target` ticks.
+std::vector<double> linear_ticks(double lo, double hi, int target = 6);
+// Decades covering [lo, hi] (lo > 0), with 2 and 5 in between when there are fewer than three.
+std::vector<double> log_ticks(double lo, double hi);
+// A tick label: up to 4 significant digits, no trailing zeros ("0.01", "250", "1e+06").
+std::string tick_label(double v);
+// Text escaped for XML and HTML content and attribute values.
+std::string escape(const std::string& s);
+
+}  // namespace frictionid::svg

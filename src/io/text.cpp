@@ -1,0 +1,115 @@
+#include "io/text.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <system_error>
+#include <vector>
+
+namespace frictionid::text {
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+std::string shown(std::string_view text, std::size_t max_bytes) {
+  std::string out = "'";
+  for (const char c : text.substr(0, max_bytes)) {
+    const auto u = static_cast<unsigned char>(c);
+    if ((u < 0x20 && c != '\t') || u >= 0x7f) {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += {'\\', 'x', kHex[u >> 4], kHex[u & 15]};
+    } else {
+      out += c;
+    }
+  }
+  return out + (text.size() > max_bytes ? "...'" : "'");
+}
+
+const char* parse_double_strict(std::string_view text, double& out) {
+  if (text.empty()) return "empty";
+  const char* first = text.data();
+  const char* const last = first + text.size();
+  // from_chars accepts '-' but not '+'; allow one '+' that is followed by a digit or '.'.
+  if (*first == '+') {
+    if (last - first < 2 || !((first[1] >= '0' && first[1] <= '9') || first[1] == '.'))
+      return "not a number";
+    ++first;
+  }
+  const char* digits = first + (*first == '-' ? 1 : 0);
+  if (last - digits >= 2 && digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X'))
+    return "hexadecimal floats are not accepted";
+  const auto [ptr, ec] = std::from_chars(first, last, out);
+  if (ec == std::errc::result_out_of_range) return "out of the double range";
+  if (ec != std::errc()) return "not a number";
+  if (std::isnan(out)) return "NaN is not allowed";
+  if (std::isinf(out)) return "Inf is not allowed";
+  if (ptr != last) return "unexpected characters after the number";
+  return nullptr;
+}
+
+namespace {
+char lower(char c) {
+  return static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+}
+}  // namespace
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  const std::size_t n = a.size(), m = b.size();
+  std::vector<std::size_t> prev2(m + 1), prev(m + 1), cur(m + 1);
+  for (std::size_t j = 0; j <= m; ++j) prev[j] = j;
+  for (std::size_t i = 1; i <= n; ++i) {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= m; ++j) {
+      const std::size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + cost});
+      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) &&
+          lower(a[i - 2]) == lower(b[j - 1]))
+        cur[j] = std::min(cur[j], prev2[j - 2] + 1);
+    }
+    std::swap(prev2, prev);
+    std::swap(prev, cur);
+  }
+  return prev[m];
+}
+
+std::string without_invisible(std::string_view s) {
+  static constexpr std::string_view kInvisible[] = {
+      "\xEF\xBB\xBF",  // byte-order mark / zero-width no-break space
+      "\xE2\x80\x8B",  // zero-width space
+      "\xE2\x80\x8C",  // zero-width non-joiner
+      "\xE2\x80\x8D",  // zero-width joiner
+      "\xE2\x81\xA0",  // word joiner
+      "\xC2\xA0",      // no-break space
+  };
+  std::string out;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    bool skipped = false;
+    for (const auto inv : kInvisible)
+      if (s.substr(i, inv.size()) == inv) {
+        i += inv.size();
+        skipped = true;
+        break;
+      }
+    if (!skipped) out += s[i++];
+  }
+  return out;
+}
+
+std::size_t misspelling_distance(std::string_view candidate, std::string_view target) {
+  // An invisible character counts as one edit, however many bytes it takes.
+  const std::string visible = without_invisible(candidate);
+  if (visible.size() != candidate.size()) {
+    const std::size_t d = edit_distance(visible, target) + 1;
+    return d <= (target.size() >= 6 ? 3 : 2) ? d : std::numeric_limits<std::size_t>::max();
+  }
+  const std::size_t d = edit_distance(candidate, target);
+  const std::size_t limit = target.size() >= 6 ? 2 : 1;
+  return d <= limit ? d : std::numeric_limits<std::size_t>::max();
+}
+
+}  // namespace frictionid::text

@@ -1,0 +1,14 @@
+// The parts of the extension module frictionid._frictionid, one registration function each
+// (module.cpp calls them in order).
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+namespace frictionid::python {
+
+void register_fit(pybind11::module_& m);       // datasets, FitOptions, fit, FitResult handle
+void register_evaluate(pybind11::module_& m);  // evaluate, coefficients
+void register_generate(pybind11::module_& m);  // synthetic datasets
+void register_simulate(pybind11::module_& m);  // the sliding-spinning body
+
+}  // namespace frictionid::python

@@ -1,0 +1,29 @@
+// frictionid._frictionid: the C++ library for the Python package (python/frictionid), which
+// adds the typed, documented API on top. Errors keep the command line's messages: InputError
+// becomes frictionid.InputError (a ValueError), FitError frictionid.FitError (a RuntimeError).
+#include <pybind11/pybind11.h>
+
+#include <frictionid/fitter.hpp>
+#include <frictionid/io/input_error.hpp>
+#include "python/bindings.hpp"
+
+namespace py = pybind11;
+
+PYBIND11_MODULE(_frictionid, m) {
+  m.doc() = "frictionid's C++ core; use the frictionid package instead of this module.";
+  static py::exception<frictionid::InputError> input_error(m, "InputError", PyExc_ValueError);
+  static py::exception<frictionid::FitError> fit_error(m, "FitError", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const frictionid::InputError& e) {
+      input_error(e.what());
+    } catch (const frictionid::FitError& e) {
+      fit_error(e.what());
+    }
+  });
+  frictionid::python::register_fit(m);
+  frictionid::python::register_evaluate(m);
+  frictionid::python::register_generate(m);
+  frictionid::python::register_simulate(m);
+}

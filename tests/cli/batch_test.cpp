@@ -1,0 +1,393 @@
+// frictionid batch through the built executable (FRICTIONID_EXE): every summary row equals a
+// single `frictionid fit` of the same rows bit for bit, failed runs are rows with exit code 4,
+// the summary does not depend on --jobs, a killed batch resumes from its journal, and bad
+// inputs exit with code 2 and say what is wrong.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int code;
+  std::string out;  // stdout and stderr together
+};
+
+RunResult run(const std::string& args) {
+  const char* exe = std::getenv("FRICTIONID_EXE");
+  if (!exe) return {-1, "FRICTIONID_EXE not set"};
+  FILE* p = popen((std::string(exe) + " " + args + " 2>&1").c_str(), "r");
+  std::string out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::string& name)
+      : path_(fs::temp_directory_path() /
+              ("frictionid_batch_" + name + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+  std::string operator/(const std::string& name) const { return (path_ / name).string(); }
+
+ private:
+  fs::path path_;
+};
+
+// summary.csv as label -> column -> cell (cells may be double-quoted).
+using Table = std::map<std::string, std::map<std::string, std::string>>;
+
+std::vector<std::string> csv_cells(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      out.back() += '"';
+      ++i;
+    } else if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      out.emplace_back();
+    } else {
+      out.back() += c;
+    }
+  }
+  return out;
+}
+
+Table read_summary(const fs::path& csv) {
+  std::istringstream in(read_file(csv));
+  std::string line;
+  std::getline(in, line);
+  const auto header = csv_cells(line);
+  Table t;
+  while (std::getline(in, line)) {
+    const auto cells = csv_cells(line);
+    EXPECT_EQ(cells.size(), header.size()) << line;
+    for (std::size_t k = 0; k < header.size() && k < cells.size(); ++k)
+      t[cells[0]][header[k]] = cells[k];
+  }
+  return t;
+}
+
+double number(const std::string& cell) {
+  EXPECT_FALSE(cell.empty());
+  return std::strtod(cell.c_str(), nullptr);
+}
+
+// Every value the summary row holds equals the single fit's report.json bit for bit.
+void expect_row_equals_single_fit(const std::map<std::string, std::string>& row,
+                                  const std::string& csv, const ScratchDir& d,
+                                  const std::string& extra_args = "") {
+  const std::string report = d / ("single_" + fs::path(csv).stem().string());
+  const RunResult f = run("fit " + csv + " --report " + report + " " + extra_args);
+  ASSERT_EQ(f.code, 0) << f.out;
+  const auto j = nlohmann::json::parse(read_file(fs::path(report) / "report.json"));
+  EXPECT_EQ(row.at("status"), "ok");
+  EXPECT_EQ(std::stoul(row.at("rows")), j["rows"].get<std::size_t>());
+  for (const auto& [name, p] : j["parameters"].items()) {
+    EXPECT_EQ(number(row.at(name)), p["value"].get<double>()) << name;
+    if (!p["stderr"].is_null())
+      EXPECT_EQ(number(row.at(name + "_stderr")), p["stderr"].get<double>()) << name;
+    else
+      EXPECT_EQ(row.at(name + "_stderr"), "") << name;
+    if (!p["ci95"].is_null()) {
+      EXPECT_EQ(number(row.at(name + "_ci95_lo")), p["ci95"][0].get<double>()) << name;
+      EXPECT_EQ(number(row.at(name + "_ci95_hi")), p["ci95"][1].get<double>()) << name;
+    }
+  }
+  EXPECT_EQ(number(row.at("cost")), j["statistics"]["cost"].get<double>());
+  EXPECT_EQ(number(row.at("reduced_chi2")), j["statistics"]["reduced_chi2"].get<double>());
+  EXPECT_EQ(std::stoul(row.at("warnings")), j["warnings"].size());
+}
+
+// Three small synthetic runs at different noise seeds: in/run1.csv ... in/run3.csv.
+void make_runs(const ScratchDir& d, int count = 3, int rows = 200) {
+  fs::create_directories(d / "in");
+  for (int i = 1; i <= count; ++i) {
+    const RunResult g =
+        run("generate --model seed --rows " + std::to_string(rows) + " --noise 0.01 --seed " +
+            std::to_string(i) + " --output " + d / ("in/run" + std::to_string(i) + ".csv"));
+    ASSERT_EQ(g.code, 0) << g.out;
+  }
+}
+
+TEST(Batch, DirectoryRowsEqualSingleFitsBitForBit) {
+  const ScratchDir d("dir");
+  make_runs(d);
+  const RunResult b = run("batch " + d / "in" + " --report " + d / "out");
+  ASSERT_EQ(b.code, 0) << b.out;
+  const Table t = read_summary(d / "out/summary.csv");
+  ASSERT_EQ(t.size(), 3u);
+  for (int i = 1; i <= 3; ++i) {
+    const std::string label = "run" + std::to_string(i);
+    ASSERT_TRUE(t.count(label)) << label;
+    expect_row_equals_single_fit(t.at(label), d / ("in/" + label + ".csv"), d);
+    EXPECT_TRUE(fs::exists(d / ("out/runs/" + label + "/report.json")));
+  }
+  const auto j = nlohmann::json::parse(read_file(d / "out/summary.json"));
+  EXPECT_EQ(j["runs"].size(), 3u);
+  EXPECT_EQ(j["runs"][0]["label"], "run1");  // ordered by label
+}
+
+TEST(Batch, ManifestRowsEqualSingleFitsAndKeepTheirColumns) {
+  const ScratchDir d("manifest");
+  make_runs(d);
+  std::ofstream(d / "in/campaign.csv") << "path,label,load_case,fix\n"
+                                       << "run1.csv,first,low,\n"
+                                       << "run2.csv,second,\"high, wet\",h=1\n";
+  const RunResult b = run("batch " + d / "in/campaign.csv" + " --report " + d / "out");
+  ASSERT_EQ(b.code, 0) << b.out;
+  const Table t = read_summary(d / "out/summary.csv");
+  ASSERT_EQ(t.size(), 2u);
+  expect_row_equals_single_fit(t.at("first"), d / "in/run1.csv", d);
+  expect_row_equals_single_fit(t.at("second"), d / "in/run2.csv", d, "--fix h=1");
+  EXPECT_EQ(t.at("second").at("load_case"), "high, wet");
+  EXPECT_EQ(t.at("second").at("fix"), "h=1");
+  EXPECT_FALSE(t.at("first").at("mean_N").empty());
+}
+
+TEST(Batch, GroupByRowsEqualSingleFitsOfTheSameRows) {
+  const ScratchDir d("groups");
+  make_runs(d);
+  // One file holding the three runs, told apart by a run_id column.
+  std::ofstream all(d / "all.csv");
+  for (int i = 1; i <= 3; ++i) {
+    std::istringstream in(read_file(d / ("in/run" + std::to_string(i) + ".csv")));
+    std::string line;
+    std::getline(in, line);
+    if (i == 1) all << line << ",run_id\n";
+    while (std::getline(in, line)) all << line << ",r" << i << "\n";
+  }
+  all.close();
+  const RunResult b =
+      run("batch " + d / "all.csv" + " --group-by run_id --jobs 2 --report " + d / "out");
+  ASSERT_EQ(b.code, 0) << b.out;
+  const Table t = read_summary(d / "out/summary.csv");
+  ASSERT_EQ(t.size(), 3u);
+  for (int i = 1; i <= 3; ++i) {
+    const std::string label = "r" + std::to_string(i);
+    expect_row_equals_single_fit(t.at(label), d / ("in/run" + std::to_string(i) + ".csv"), d);
+    EXPECT_EQ(t.at(label).at("run_id"), label);
+  }
+}
+
+TEST(Batch, GroupByANumericColumnLabelsRunsByItsValue) {
+  const ScratchDir d("numeric_groups");
+  const RunResult g =
+      run("generate --model seed --rows 300 --loads 2000,4000 --output " + d / "rig.csv");
+  ASSERT_EQ(g.code, 0) << g.out;
+  const RunResult b = run("batch " + d / "rig.csv" + " --group-by N --report " + d / "out");
+  ASSERT_EQ(b.code, 0) << b.out;
+  const Table t = read_summary(d / "out/summary.csv");
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t.at("2000").at("rows"), "150");
+  EXPECT_EQ(t.at("4000").at("N"), "4000");
+  EXPECT_EQ(number(t.at("4000").at("mean_N")), 4000.0);
+  EXPECT_TRUE(fs::exists(d / "out/runs/2000/report.json"));
+}
+
+TEST(Batch, AFailedRunIsARowAndExitCodeFourWhileTheOthersSucceed) {
+  const ScratchDir d("failed");
+  make_runs(d, 2);
+  std::ofstream(d / "in/broken.csv") << "v_x,omega,N,R,T_x\n0.1,2,1000,0.05,abc\n";
+  const RunResult b = run("batch " + d / "in" + " --report " + d / "out");
+  EXPECT_EQ(b.code, 4) << b.out;
+  EXPECT_NE(b.out.find("broken"), std::string::npos) << b.out;
+  const Table t = read_summary(d / "out/summary.csv");
+  ASSERT_EQ(t.size(), 3u);
+  EXPECT_EQ(t.at("broken").at("status"), "failed");
+  EXPECT_NE(t.at("broken").at("error").find("broken.csv:2"), std::string::npos)
+      << t.at("broken").at("error");
+  EXPECT_EQ(t.at("broken").at("f"), "");
+  EXPECT_EQ(t.at("run1").at("status"), "ok");
+  EXPECT_EQ(t.at("run2").at("status"), "ok");
+  EXPECT_EQ(read_file(d / "out/summary.csv").find("nan"), std::string::npos);
+}
+
+TEST(Batch, SummariesDoNotDependOnTheNumberOfJobs) {
+  const ScratchDir d("jobs");
+  make_runs(d, 4);
+  std::ofstream(d / "in/broken.csv") << "v_x,omega\n";
+  for (const char* jobs : {"1", "2"}) {
+    const RunResult b = run("batch " + d / "in" + " --jobs " + jobs + " --report " +
+                            d / ("out" + std::string(jobs)));
+    EXPECT_EQ(b.code, 4) << b.out;
+  }
+  for (const char* file : {"summary.csv", "summary.json"})
+    EXPECT_EQ(read_file(d / ("out1/" + std::string(file))),
+              read_file(d / ("out2/" + std::string(file))))
+        << file;
+}
+
+std::size_t journal_lines(const fs::path& p) {
+  const std::string s = read_file(p);
+  return static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n'));
+}
+
+// `frictionid batch in --jobs 1 --report out` in the background, its output discarded.
+pid_t start_batch(const std::string& in, const std::string& out) {
+  const std::string exe = std::getenv("FRICTIONID_EXE");
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    std::freopen("/dev/null", "w", stdout);
+    std::freopen("/dev/null", "w", stderr);
+    ::execl(exe.c_str(), exe.c_str(), "batch", in.c_str(), "--jobs", "1", "--report", out.c_str(),
+            static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  return pid;
+}
+
+void wait_for_lines(const fs::path& journal, std::size_t lines) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (journal_lines(journal) < lines && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
+// Many copies of one 3000-row run: a batch that takes long enough to be stopped midway.
+void make_copies(const ScratchDir& d, int runs) {
+  make_runs(d, 1, 3000);
+  for (int i = 2; i <= runs; ++i)
+    fs::copy_file(d / "in/run1.csv", d / ("in/run" + std::to_string(i) + ".csv"));
+}
+
+TEST(Batch, AKilledBatchResumesWithoutRefittingFinishedRunsAndForceRefitsAll) {
+  const ScratchDir d("resume");
+  constexpr int kRuns = 16;
+  make_copies(d, kRuns);
+  const RunResult reference = run("batch " + d / "in" + " --jobs 1 --report " + d / "reference");
+  ASSERT_EQ(reference.code, 0) << reference.out;
+
+  const pid_t pid = start_batch(d / "in", d / "out");
+  ASSERT_GT(pid, 0);
+  const fs::path journal = d / "out/journal.jsonl";
+  wait_for_lines(journal, 2);
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  const std::size_t finished = journal_lines(journal);
+  ASSERT_GE(finished, 2u);
+  ASSERT_LT(finished, static_cast<std::size_t>(kRuns)) << "the batch ended before the kill";
+  EXPECT_FALSE(fs::exists(d / "out/summary.csv"));
+  std::ofstream(journal, std::ios::app) << "{\"label\":\"run9\",\"ke";  // a torn last line
+
+  const RunResult resumed = run("batch " + d / "in" + " --jobs 2 --report " + d / "out");
+  ASSERT_EQ(resumed.code, 0) << resumed.out;
+  EXPECT_NE(resumed.out.find(std::to_string(kRuns - finished) + " fitted, " +
+                             std::to_string(finished) + " from the journal"),
+            std::string::npos)
+      << resumed.out;
+  EXPECT_EQ(read_file(d / "out/summary.csv"), read_file(d / "reference/summary.csv"));
+  EXPECT_EQ(read_file(d / "out/summary.json"), read_file(d / "reference/summary.json"));
+
+  const RunResult again = run("batch " + d / "in" + " --report " + d / "out");
+  EXPECT_NE(again.out.find("0 fitted, " + std::to_string(kRuns) + " from the journal"),
+            std::string::npos)
+      << again.out;
+  const RunResult forced = run("batch " + d / "in" + " --force --report " + d / "out");
+  EXPECT_NE(forced.out.find(std::to_string(kRuns) + " fitted, 0 from the journal"),
+            std::string::npos)
+      << forced.out;
+  EXPECT_EQ(read_file(d / "out/summary.csv"), read_file(d / "reference/summary.csv"));
+}
+
+TEST(Batch, CtrlCStopsWithCode130AndKeepsFinishedRunsForTheRerun) {
+  const ScratchDir d("interrupt");
+  constexpr int kRuns = 16;
+  make_copies(d, kRuns);
+  const pid_t pid = start_batch(d / "in", d / "out");
+  ASSERT_GT(pid, 0);
+  const fs::path journal = d / "out/journal.jsonl";
+  wait_for_lines(journal, 1);
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_FALSE(fs::exists(d / "out/summary.csv"));
+  const std::size_t finished = journal_lines(journal);
+  ASSERT_LT(finished, static_cast<std::size_t>(kRuns)) << "the batch ended before Ctrl-C";
+  const RunResult resumed = run("batch " + d / "in" + " --report " + d / "out");
+  ASSERT_EQ(resumed.code, 0) << resumed.out;
+  EXPECT_NE(resumed.out.find(std::to_string(finished) + " from the journal"), std::string::npos)
+      << resumed.out;
+}
+
+TEST(Batch, ChangedOptionsRefitRunsTheJournalHolds) {
+  const ScratchDir d("options");
+  make_runs(d, 2);
+  ASSERT_EQ(run("batch " + d / "in" + " --report " + d / "out").code, 0);
+  const RunResult b = run("batch " + d / "in" + " --seed 7 --report " + d / "out");
+  EXPECT_NE(b.out.find("2 fitted, 0 from the journal"), std::string::npos) << b.out;
+}
+
+TEST(Batch, PerRunReportsNoneAndFull) {
+  const ScratchDir d("reports");
+  make_runs(d, 1);
+  ASSERT_EQ(run("batch " + d / "in" + " --per-run-reports none --report " + d / "none").code, 0);
+  EXPECT_FALSE(fs::exists(d / "none/runs/run1"));
+  ASSERT_EQ(run("batch " + d / "in" + " --per-run-reports full --report " + d / "full").code, 0);
+  for (const char* file : {"report.json", "report.md", "report.html"})
+    EXPECT_TRUE(fs::exists(d / ("full/runs/run1/" + std::string(file)))) << file;
+}
+
+TEST(Batch, BadInputsExitWithCodeTwoAndSayWhatIsWrong) {
+  const ScratchDir d("bad");
+  make_runs(d, 1);
+  fs::create_directories(d / "empty");
+  std::ofstream(d / "manifest.csv") << "path,label\nin/run1.csv,a\nin/missing.csv,b\n";
+  std::ofstream(d / "clash.csv") << "path,cost\nin/run1.csv,12\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"batch " + d / "empty", "no *.csv file"},
+      {"batch '" + d / "in/*.txt" + "'", "matches no CSV file"},
+      {"batch " + d / "nowhere.csv", "no such file or directory"},
+      {"batch " + d / "manifest.csv", "manifest.csv:3:1: no such file 'in/missing.csv'"},
+      {"batch " + d / "in/run1.csv" + " --group-by load_case", "--group-by: no column 'load_case'"},
+      {"batch " + d / "in" + " --per-run-reports some", "per-run-reports"},
+      {"batch " + d / "clash.csv", "column 'cost' would clash"},
+  };
+  for (const auto& [args, message] : cases) {
+    const RunResult r = run(args + " --report " + d / "out");
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << args << ": " << r.out;
+    EXPECT_EQ(r.out.find("nan"), std::string::npos) << args << ": " << r.out;
+  }
+}
+
+}  // namespace

@@ -1,0 +1,80 @@
+// --output that is not a regular file (issue cases A1 and C5), through the built executable: a
+// FIFO, /dev/stdout, a symlink and the shell's process substitution >(cmd) get the data, and
+// none of them is replaced by a regular file.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class OutputTargets : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!std::getenv("FRICTIONID_EXE")) GTEST_SKIP() << "FRICTIONID_EXE not set";
+    dir_ = fs::temp_directory_path() / ("frictionid_outputs_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  // Runs a bash script in dir_ with $F set to the executable; returns its exit status.
+  int bash(const std::string& script) {
+    const std::string cmd = "cd '" + dir_.string() + "' && F='" + std::getenv("FRICTIONID_EXE") +
+                            "' bash -c '" + script + "' 2>err";
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  std::string generate(const std::string& output) const {
+    return "$F generate --model seed --rows 7 --output " + output;
+  }
+  fs::path dir_;
+};
+
+TEST_F(OutputTargets, AFifoGetsTheRowsAndStaysAFifo) {
+  ASSERT_EQ(bash("mkfifo out.csv; cat out.csv > got.csv & " + generate("out.csv") + "; wait"), 0)
+      << read_file(dir_ / "err");
+  EXPECT_TRUE(fs::is_fifo(fs::symlink_status(dir_ / "out.csv")));
+  EXPECT_EQ(
+      std::count(std::istreambuf_iterator<char>(std::ifstream(dir_ / "got.csv").rdbuf()), {}, '\n'),
+      8);
+}
+
+TEST_F(OutputTargets, ProcessSubstitutionGetsTheRows) {
+  ASSERT_EQ(bash(generate(">(cat > got.csv)") + "; sleep 0.5"), 0) << read_file(dir_ / "err");
+  EXPECT_EQ(read_file(dir_ / "got.csv").rfind("v_x,", 0), 0u);
+}
+
+TEST_F(OutputTargets, DevStdoutIsWrittenInPlace) {
+  ASSERT_EQ(bash(generate("/dev/stdout") + " > got.csv"), 0) << read_file(dir_ / "err");
+  EXPECT_EQ(read_file(dir_ / "got.csv").rfind("v_x,", 0), 0u);
+}
+
+TEST_F(OutputTargets, ASymlinkKeepsItsLinkAndItsTargetGetsTheRows) {
+  ASSERT_EQ(bash("echo old > target.csv; ln -s target.csv link.csv; " + generate("link.csv")), 0)
+      << read_file(dir_ / "err");
+  EXPECT_TRUE(fs::is_symlink(dir_ / "link.csv"));
+  EXPECT_EQ(read_file(dir_ / "target.csv").rfind("v_x,", 0), 0u);
+}
+
+}  // namespace

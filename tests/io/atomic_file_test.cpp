@@ -1,0 +1,95 @@
+// write_file_atomically and outputs that are not regular files: a FIFO or a device is written
+// in place and stays what it is; a symlink stays a symlink and its target gets the content.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "io/atomic_file.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using frictionid::write_file_atomically;
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::string& name)
+      : path_(fs::temp_directory_path() /
+              ("frictionid_atomic_" + name + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+TEST(AtomicFile, AFifoIsWrittenInPlaceAndStaysAFifo) {
+  ScratchDir s("fifo");
+  const fs::path fifo = s.path() / "out.csv";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  std::string received;
+  std::thread reader([&] { received = read_file(fifo); });
+  write_file_atomically(fifo.string(), "a,b\n1,2\n");
+  reader.join();
+  EXPECT_EQ(received, "a,b\n1,2\n");
+  EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
+  EXPECT_EQ(std::distance(fs::directory_iterator(s.path()), fs::directory_iterator()), 1);
+}
+
+TEST(AtomicFile, ASymlinkStaysASymlinkAndItsTargetGetsTheContent) {
+  ScratchDir s("symlink");
+  std::ofstream(s.path() / "target.csv") << "old\n";
+  fs::create_symlink("target.csv", s.path() / "link.csv");
+  write_file_atomically((s.path() / "link.csv").string(), "new\n");
+  EXPECT_TRUE(fs::is_symlink(s.path() / "link.csv"));
+  EXPECT_EQ(read_file(s.path() / "target.csv"), "new\n");
+}
+
+TEST(AtomicFile, ADanglingSymlinkCreatesItsTarget) {
+  ScratchDir s("dangling");
+  fs::create_symlink("made.csv", s.path() / "link.csv");
+  write_file_atomically((s.path() / "link.csv").string(), "x\n");
+  EXPECT_TRUE(fs::is_symlink(s.path() / "link.csv"));
+  EXPECT_EQ(read_file(s.path() / "made.csv"), "x\n");
+}
+
+TEST(AtomicFile, ALinkToADeviceWritesToTheDeviceAndReplacesNothing) {
+  ScratchDir s("device");
+  fs::create_symlink("/dev/null", s.path() / "sink");
+  write_file_atomically((s.path() / "sink").string(), "discarded\n");
+  EXPECT_TRUE(fs::is_symlink(s.path() / "sink"));
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(s.path()), fs::directory_iterator()), 1);
+}
+
+TEST(AtomicFile, AnUnwritableDeviceGivesAClearError) {
+  try {
+    write_file_atomically("/proc/version", "x");
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write /proc/version"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace

@@ -1,0 +1,183 @@
+#include <frictionid/io/report_writer.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
+
+namespace frictionid {
+namespace {
+
+// Two loads, a slip sweep at fixed spin; T_x = 0.5 N eps / (1 + eps) measured with a small
+// wiggle, predicted without it; an extra numeric column and an extra text column.
+Dataset make_dataset() {
+  Dataset d;
+  d.source = "two_loads.csv";
+  d.extra_names = {"slip_angle", "run"};
+  d.extra_values.resize(2);
+  for (double load : {100.0, 200.0})
+    for (int k = 0; k < 20; ++k) {
+      const double eps = 0.01 * std::pow(1.6, k);
+      d.line.push_back(d.line.size() + 2);
+      d.v_x.push_back(eps * 2.0 * 0.05);
+      d.v_y.push_back(0.0);
+      d.omega.push_back(2.0);
+      d.N.push_back(load);
+      d.R.push_back(0.05);
+      d.value[0].push_back(0.5 * load * eps / (1 + eps) * (1 + 0.01 * std::sin(k)));
+      d.present[0].push_back(1);
+      d.extra_values[0].push_back(fmt::format("{}", 0.5 * k));
+      d.extra_values[1].push_back(k % 2 ? "A" : "B");
+    }
+  for (int c : {1, 2, 3}) {
+    d.value[c].assign(d.rows(), 0.0);
+    d.present[c].assign(d.rows(), 0);
+  }
+  return d;
+}
+
+FitResult make_result(const Dataset& d) {
+  FitResult r;
+  r.model = "seed";
+  r.pressure = "hertz";
+  r.rows = d.rows();
+  r.channels = {Channel::T_x};
+  ParameterEstimate f;
+  f.name = "f";
+  f.value = 0.49987654321;
+  f.std_error = 0.00123;
+  f.ci95 = std::array<double, 2>{0.4974, 0.5023};
+  f.lower = 0.01;
+  f.upper = 5;
+  ParameterEstimate kappa;
+  kappa.name = "kappa";
+  kappa.value = 1.0;
+  kappa.fixed = true;
+  r.parameters = {f, kappa};
+  r.correlation_names = {"f"};
+  r.correlation = {{1.0}};
+  r.warnings = {"T_x <residuals> trend with eps"};
+  for (std::size_t i = 0; i < d.rows(); ++i) {
+    const double eps = d.v_x[i] / (d.omega[i] * d.R[i]);
+    r.eps.push_back(eps);
+    r.fitted[0].push_back(0.5 * d.N[i] * eps / (1 + eps));
+  }
+  return r;
+}
+
+std::size_t count(const std::string& text, const std::string& word) {
+  std::size_t n = 0;
+  for (auto pos = text.find(word); pos != std::string::npos; pos = text.find(word, pos + 1)) ++n;
+  return n;
+}
+
+TEST(ReportHtml, FetchesNothingOutsideThePage) {
+  const Dataset d = make_dataset();
+  const std::string html = report_html(make_result(d), d);
+  EXPECT_EQ(html.find("http:"), std::string::npos);
+  EXPECT_EQ(html.find("https:"), std::string::npos);
+  EXPECT_EQ(html.find(" src="), std::string::npos);
+  EXPECT_EQ(html.find("<link"), std::string::npos);
+  EXPECT_EQ(html.find("@import"), std::string::npos);
+  EXPECT_EQ(html.find("url("), std::string::npos);
+}
+
+TEST(ReportHtml, HoldsEveryParameterValueExactly) {
+  const Dataset d = make_dataset();
+  const FitResult r = make_result(d);
+  const std::string html = report_html(r, d);
+  for (const auto& p : r.parameters) {
+    const auto row = html.find("<tr data-param=\"" + p.name + "\">");
+    ASSERT_NE(row, std::string::npos) << p.name;
+    const auto cell = html.find("data-value=\"", row) + 12;
+    EXPECT_EQ(std::stod(html.substr(cell, html.find('"', cell) - cell)), p.value) << p.name;
+  }
+}
+
+TEST(ReportHtml, WarningsComeFirstAndAreEscaped) {
+  const Dataset d = make_dataset();
+  const std::string html = report_html(make_result(d), d);
+  const auto warning = html.find("T_x &lt;residuals&gt; trend with eps");
+  ASSERT_NE(warning, std::string::npos);
+  EXPECT_LT(warning, html.find("id=\"parameters\""));
+}
+
+TEST(ReportHtml, EveryChannelHasACollapsePlotColouredByLoad) {
+  const Dataset d = make_dataset();
+  const std::string html = report_html(make_result(d), d);
+  const auto fig = html.find("<figure class=\"plot\" data-file=\"collapse_T_x.svg\">");
+  ASSERT_NE(fig, std::string::npos);
+  const std::string plot = html.substr(fig, html.find("</figure>", fig) - fig);
+  EXPECT_NE(plot.find(">N = 100</text>"), std::string::npos);
+  EXPECT_NE(plot.find(">N = 200</text>"), std::string::npos);
+  EXPECT_EQ(count(plot, "stroke-width=\"1.8\""), 2u);  // one fitted line per load
+  EXPECT_NE(html.find("data-file=\"fit_T_x.svg\""), std::string::npos);
+  EXPECT_NE(html.find("data-file=\"residuals_T_x.svg\""), std::string::npos);
+}
+
+TEST(ReportHtml, ColourByATextColumnGivesOneColourPerValue) {
+  const Dataset d = make_dataset();
+  ReportOptions o;
+  o.color_by = "run";
+  const std::string html = report_html(make_result(d), d, o);
+  EXPECT_NE(html.find(">run = A</text>"), std::string::npos);
+  EXPECT_NE(html.find(">run = B</text>"), std::string::npos);
+  EXPECT_EQ(html.find(">N = 100</text>"), std::string::npos);
+}
+
+TEST(ReportHtml, ManyValuesAreColouredInEightRangesCoveringThemAll) {
+  const Dataset d = make_dataset();  // slip_angle takes 20 values, 0 to 9.5
+  ReportOptions o;
+  o.color_by = "slip_angle";
+  const std::string html = report_html(make_result(d), d, o);
+  const auto fig = html.find("data-file=\"collapse_T_x.svg\"");
+  const std::string plot = html.substr(fig, html.find("</figure>", fig) - fig);
+  EXPECT_EQ(count(plot, ">slip_angle in ["), 8u);
+  EXPECT_NE(plot.find(">slip_angle in [0, "), std::string::npos);
+  EXPECT_NE(plot.find(", 9.5]</text>"), std::string::npos);
+}
+
+TEST(ReportHtml, PlotXAddsAPlotAgainstTheColumn) {
+  const Dataset d = make_dataset();
+  ReportOptions o;
+  o.plot_x = {"slip_angle"};
+  const std::string html = report_html(make_result(d), d, o);
+  EXPECT_NE(html.find("data-file=\"x_slip_angle_T_x.svg\""), std::string::npos);
+  EXPECT_NE(html.find("T_x: measured and fitted against slip_angle"), std::string::npos);
+}
+
+TEST(ReportHtml, UnknownOrTextPlotColumnsAreRejected) {
+  const Dataset d = make_dataset();
+  const FitResult r = make_result(d);
+  ReportOptions missing;
+  missing.plot_x = {"camber"};
+  EXPECT_THROW(report_html(r, d, missing), std::invalid_argument);
+  ReportOptions text;
+  text.plot_x = {"run"};
+  EXPECT_THROW(report_html(r, d, text), std::invalid_argument);
+  ReportOptions colour;
+  colour.color_by = "camber";
+  EXPECT_THROW(report_html(r, d, colour), std::invalid_argument);
+}
+
+TEST(ReportHtml, SameInputGivesTheSameBytesAndNoNanText) {
+  const Dataset d = make_dataset();
+  FitResult r = make_result(d);
+  r.parameters[0].std_error = std::numeric_limits<double>::quiet_NaN();
+  r.correlation[0][0] = std::numeric_limits<double>::quiet_NaN();
+  r.reduced_chi2 = std::numeric_limits<double>::infinity();
+  const std::string html = report_html(r, d);
+  EXPECT_EQ(html, report_html(r, d));
+  std::string lower = html;
+  for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  EXPECT_EQ(lower.find(">nan<"), std::string::npos);
+  EXPECT_EQ(lower.find("\"nan\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace frictionid

@@ -1,0 +1,114 @@
+// ReportTransaction and ReportDirectoryLock in process: a transaction that is not committed
+// leaves DIR as it was and nothing staged; a committed one swaps the whole directory; the lock is
+// re-entrant within a process, so write_report under the CLI's lock does not wait for itself.
+#include "io/report_transaction.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <frictionid/io/input_error.hpp>
+#include "io/atomic_file.hpp"
+#include "io/report_directory_lock.hpp"
+#include "io/report_location.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace frictionid;
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::string& name)
+      : path_(fs::temp_directory_path() /
+              ("frictionid_rtx_" + name + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::size_t entries(const fs::path& dir) {
+  return static_cast<std::size_t>(
+      std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+}
+
+void write_report_of(const std::string& dir, const std::string& marker) {
+  ReportTransaction t(dir);
+  write_file_atomically((t.staging() / "report.json").string(), marker);
+  write_file_atomically((t.staging() / "report.md").string(), marker);
+  t.commit();
+}
+
+TEST(ReportTransaction, WithoutCommitTheEarlierReportStaysAndNothingStagedRemains) {
+  ScratchDir s("abort");
+  const std::string dir = (s.path() / "rep").string();
+  write_report_of(dir, "old");
+  try {
+    ReportTransaction t(dir);
+    write_file_atomically((t.staging() / "report.json").string(), "new");
+    throw std::runtime_error("disk full");  // as a failed write would
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_EQ(read_file(s.path() / "rep" / "report.json"), "old");
+  EXPECT_EQ(entries(s.path()), 2u);  // rep and its target
+}
+
+TEST(ReportTransaction, CommitSwapsTheWholeDirectory) {
+  ScratchDir s("commit");
+  const std::string dir = (s.path() / "rep").string();
+  write_report_of(dir, "one");
+  {
+    ReportTransaction t(dir);
+    write_file_atomically((t.staging() / "report.json").string(), "two");
+    t.commit();
+  }
+  EXPECT_EQ(read_file(s.path() / "rep" / "report.json"), "two");
+  EXPECT_FALSE(fs::exists(s.path() / "rep" / "report.md"));  // nothing of the first report
+  EXPECT_EQ(entries(s.path()), 2u);
+}
+
+TEST(ReportDirectoryLock, IsReentrantWithinAProcess) {
+  ScratchDir s("reentrant");
+  const std::string dir = (s.path() / "rep").string();
+  ReportDirectoryLock outer(dir, /*wait=*/false);
+  write_report_of(dir, "inside");  // takes the lock again: must not wait for itself
+  EXPECT_EQ(read_file(s.path() / "rep" / "report.json"), "inside");
+}
+
+TEST(ReportDirectoryLock, TheLockFileGoesWithTheLock) {
+  ScratchDir s("lockfile");
+  const std::string dir = (s.path() / "rep").string();
+  {
+    ReportDirectoryLock lock(dir, /*wait=*/false);
+    EXPECT_TRUE(fs::exists(s.path() / ".rep.lock"));
+  }
+  EXPECT_FALSE(fs::exists(s.path() / ".rep.lock"));
+}
+
+TEST(ReportLocation, DotDotDotAndRootAreRejected) {
+  for (const char* dir : {"", ".", "..", "/", "a/.."})
+    EXPECT_THROW(report_location(dir), InputError) << dir;
+  EXPECT_EQ(report_location("out/").name, "out");
+  EXPECT_EQ(report_location("a/b").parent, fs::path("a"));
+}
+
+}  // namespace
