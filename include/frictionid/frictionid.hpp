@@ -15,6 +15,7 @@
 #include <frictionid/fit_result.hpp>
 #include <frictionid/fit_settings.hpp>
 #include <frictionid/fitter.hpp>
+#include <frictionid/joint_fit.hpp>
 #include <frictionid/model_comparison.hpp>
 #include <frictionid/model_variant.hpp>
 #include <frictionid/parameters.hpp>

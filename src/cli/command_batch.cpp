@@ -19,6 +19,7 @@
 #include <frictionid/io/summary_table.hpp>
 #include "cli/batch_journal.hpp"
 #include "cli/batch_runs.hpp"
+#include "cli/batch_shared_fit.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/fit_options.hpp"
@@ -93,6 +94,8 @@ int run_batch(const BatchOptions& o) {
   const auto t_start = std::chrono::steady_clock::now();
   if (o.jobs < 0) throw InputError("--jobs must be 0 (every hardware thread) or more");
   (void)fit_settings_from_options(o.fit, o.fit.model);  // bad options fail before any work
+  const std::vector<std::string> shared =
+      o.shared.empty() ? std::vector<std::string>{} : parse_shared_option(o.shared);
   const std::atomic<bool>* interrupted = install_interrupt_handler();
   const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait);
   std::error_code ec;
@@ -101,6 +104,7 @@ int run_batch(const BatchOptions& o) {
 
   const std::vector<BatchRun> runs =
       plan_batch_runs(o.inputs, o.fit, o.group_by, "reports=" + o.per_run_reports);
+  check_shared_parameters(runs, shared);
   fs::create_directories(o.fit.report);
   BatchJournal journal((fs::path(o.fit.report) / "journal.jsonl").string(), o.force);
 
@@ -194,6 +198,16 @@ int run_batch(const BatchOptions& o) {
       runs.size(), fitted, from_journal, failed_total,
       seconds(std::chrono::steady_clock::now() - t_start).count(), jobs);
   std::printf("summary: %s/summary.csv\n", o.fit.report.c_str());
+  if (!shared.empty()) {
+    try {
+      write_shared_fit(runs, table, shared, o.fit.threads, interrupted, o.fit.report);
+    } catch (const FitError& e) {
+      if (interrupted->load()) return kExitInterrupted;
+      std::fprintf(stderr, "frictionid: the joint fit (--shared %s) failed: %s\n", o.shared.c_str(),
+                   e.what());
+      return kExitFitFailed;
+    }
+  }
   return failed_total > 0 ? kExitSomeRunsFailed : kExitOk;
 }
 

@@ -81,6 +81,7 @@ struct BatchOptions {
   std::string per_run_reports = "json";  // none, json or full
   bool force = false;                    // fit every run again, whatever the journal holds
   int jobs = 0;                          // runs fitted at once; 0: every hardware thread
+  std::string shared;                    // P[,P]: parameters common to every run (joint fit)
 };
 int run_batch(const BatchOptions& o);
 

@@ -198,6 +198,9 @@ void add_batch(CLI::App& app, BatchOptions& o) {
   c->add_flag("--force", o.force, "fit every run again, ignoring DIR/journal.jsonl");
   c->add_option("--jobs", o.jobs, "runs fitted at once (0: every hardware thread)")
       ->capture_default_str();
+  c->add_option("--shared", o.shared,
+                "P[,P]: after the runs' own fits, one joint fit in which these parameters are "
+                "common to every run (DIR/shared.csv, DIR/shared.json), e.g. kappa,h");
 }
 
 void add_simulate(CLI::App& app, SimulateOptions& o) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <string>
 
 #include "identify/bootstrap_intervals.hpp"
@@ -10,6 +11,7 @@
 #include "identify/fit_search.hpp"
 #include "identify/fit_statistics.hpp"
 #include "identify/fit_warnings.hpp"
+#include "identify/fitted_run.hpp"
 #include "identify/noise_model.hpp"
 #include "identify/noise_reweighting.hpp"
 #include "identify/number_text.hpp"
@@ -29,13 +31,20 @@ std::string loss_label(const FitSettings& s) {
 }  // namespace
 
 FitResult Fitter::fit(const Dataset& data, FitObserver* observer) const {
-  const FitSettings& s = settings_;
+  return fit_keeping_problem(settings_, data, observer).result;
+}
+
+FittedRun fit_keeping_problem(const FitSettings& settings, const Dataset& data,
+                              FitObserver* observer) {
+  FittedRun run;
+  run.settings = std::make_unique<FitSettings>(settings);
+  const FitSettings& s = *run.settings;
   std::string why;
   if (!s.validate(&why)) throw std::invalid_argument("invalid fit settings: " + why);
   if (data.rows() == 0) throw std::invalid_argument("the dataset has no rows");
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
-  FitResult res;
+  FitResult& res = run.result;
   res.model_kind = s.model;
   res.model = model_name(s.model);
   res.pressure = s.law_label;
@@ -54,8 +63,7 @@ FitResult Fitter::fit(const Dataset& data, FitObserver* observer) const {
   // With an estimated noise model the statistics see the data weighted by it.
   NoiseRefinement noise;
   NoiseTerms noise_terms;
-  const LocalProblem* final_problem = &lp;
-  LocalProblem weighted_problem;
+  run.problem = lp;
   // A noise model needs residual degrees of freedom to be estimated from.
   std::size_t observations = 0;
   for (const auto& cs : res.channel_summaries) observations += cs.rows;
@@ -64,10 +72,9 @@ FitResult Fitter::fit(const Dataset& data, FitObserver* observer) const {
                   [&](Channel c) { return noise_estimated(s, data, c); })) {
     noise = refine_noise(lp, best, res, observer);
     best = noise.fit;
-    weighted_problem = problem_on(lp, noise.weighted);
-    for (Channel c : weighted_problem.rows.channels)
-      weighted_problem.rows.scale[static_cast<int>(c)] = 1.0;
-    final_problem = &weighted_problem;
+    run.weighted = std::make_unique<Dataset>(std::move(noise.weighted));
+    run.problem = problem_on(lp, *run.weighted);
+    for (Channel c : run.problem.rows.channels) run.problem.rows.scale[static_cast<int>(c)] = 1.0;
     noise_terms = {noise.log_det, noise.parameters};
   }
   const auto t_local = clock::now();
@@ -75,6 +82,8 @@ FitResult Fitter::fit(const Dataset& data, FitObserver* observer) const {
   res.solver.termination = best.termination;
   res.solver.converged = best.converged;
 
+  run.x = best.x;
+  const LocalProblem* final_problem = &run.problem;
   const std::vector<int> undetermined =
       add_fit_statistics(*final_problem, best.x, search.start, noise_terms, res);
   res.intervals = s.intervals;
@@ -91,7 +100,7 @@ FitResult Fitter::fit(const Dataset& data, FitObserver* observer) const {
   res.solver.time_s = seconds(t_end - t0).count();
   res.solver.local_time_s = seconds(t_local - t0).count() - res.solver.global_time_s;
   res.solver.statistics_time_s = seconds(t_end - t_local).count();
-  return res;
+  return run;
 }
 
 }  // namespace frictionid

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -365,6 +366,66 @@ TEST(Batch, PerRunReportsNoneAndFull) {
   ASSERT_EQ(run("batch " + d / "in" + " --per-run-reports full --report " + d / "full").code, 0);
   for (const char* file : {"report.json", "report.md", "report.html"})
     EXPECT_TRUE(fs::exists(d / ("full/runs/run1/" + std::string(file)))) << file;
+}
+
+// Runs at three loads made with one kappa and h and a friction f per load, without noise.
+void make_load_runs(const ScratchDir& d) {
+  fs::create_directories(d / "in");
+  const char* f[] = {"0.7", "0.85", "1"};
+  const char* load[] = {"2000", "4000", "6000"};
+  for (int i = 0; i < 3; ++i) {
+    const RunResult g = run(std::string("generate --model seed --rows 200 --noise 0 --param f=") +
+                            f[i] + ",kappa=1.3,h=0.12 --loads " + load[i] + " --output " +
+                            d / ("in/load" + std::string(load[i]) + ".csv"));
+    ASSERT_EQ(g.code, 0) << g.out;
+  }
+}
+
+double matched_digits(double estimate, double truth) {
+  const double rel = std::fabs(estimate - truth) / std::fabs(truth);
+  return rel == 0.0 ? 17.0 : -std::log10(rel);
+}
+
+TEST(Batch, SharedKappaAndHAreOneValueForEveryRunWhileEachRunKeepsItsOwnF) {
+  const ScratchDir d("shared");
+  make_load_runs(d);
+  const RunResult plain = run("batch " + d / "in" + " --report " + d / "plain");
+  ASSERT_EQ(plain.code, 0) << plain.out;
+  const RunResult r = run("batch " + d / "in" + " --shared kappa,h --report " + d / "out");
+  ASSERT_EQ(r.code, 0) << r.out;
+  // The runs' own fits are the same with or without --shared.
+  EXPECT_EQ(read_file(fs::path(d / "out") / "summary.csv"),
+            read_file(fs::path(d / "plain") / "summary.csv"));
+  const Table t = read_summary(fs::path(d / "out") / "shared.csv");
+  ASSERT_EQ(t.size(), 3u);
+  const std::map<std::string, double> f = {
+      {"load2000", 0.7}, {"load4000", 0.85}, {"load6000", 1.0}};
+  for (const auto& [label, row] : t) {
+    EXPECT_EQ(row.at("kappa"), t.begin()->second.at("kappa")) << label;
+    EXPECT_EQ(row.at("h"), t.begin()->second.at("h")) << label;
+    EXPECT_GE(matched_digits(number(row.at("kappa")), 1.3), 10.0) << row.at("kappa");
+    EXPECT_GE(matched_digits(number(row.at("h")), 0.12), 10.0) << row.at("h");
+    EXPECT_GE(matched_digits(number(row.at("f")), f.at(label)), 10.0)
+        << label << " " << row.at("f");
+  }
+  const auto j = nlohmann::json::parse(read_file(fs::path(d / "out") / "shared.json"));
+  EXPECT_EQ(j["shared"]["kappa"]["value"].get<double>(), number(t.begin()->second.at("kappa")));
+  EXPECT_EQ(j["runs_fitted"].get<int>(), 3);
+  EXPECT_EQ(j["solver"]["linear_solver"], "DENSE_SCHUR");
+}
+
+TEST(Batch, ABadSharedParameterExitsWithCodeTwoNamingItBeforeAnyRunIsFitted) {
+  const ScratchDir d("shared_bad");
+  make_runs(d, 2, 100);
+  const RunResult unknown = run("batch " + d / "in" + " --shared kapa --report " + d / "a");
+  EXPECT_EQ(unknown.code, 2) << unknown.out;
+  EXPECT_NE(unknown.out.find("--shared: unknown parameter 'kapa'"), std::string::npos)
+      << unknown.out;
+  EXPECT_FALSE(fs::exists(d / "a/summary.csv"));
+  const RunResult fixed = run("batch " + d / "in" + " --shared h --fix h=0.1 --report " + d / "b");
+  EXPECT_EQ(fixed.code, 2) << fixed.out;
+  EXPECT_NE(fixed.out.find("shared parameter h is fixed"), std::string::npos) << fixed.out;
+  EXPECT_FALSE(fs::exists(d / "b/summary.csv"));
 }
 
 TEST(Batch, BadInputsExitWithCodeTwoAndSayWhatIsWrong) {

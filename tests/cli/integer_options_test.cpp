@@ -28,8 +28,8 @@ struct Result {
 // that an allocation from a wrapped count fails fast instead of eating the machine.
 Result run(const std::string& args) {
   const char* exe = std::getenv("FRICTIONID_EXE");
-  const std::string cmd = frictionid::test::memory_cap_prefix(1000) + "exec '" + std::string(exe ? exe : "frictionid") +
-                          "' " + args + " 2>&1 >/dev/null";
+  const std::string cmd = frictionid::test::memory_cap_prefix(1000) + "exec '" +
+                          std::string(exe ? exe : "frictionid") + "' " + args + " 2>&1 >/dev/null";
   FILE* p = popen(cmd.c_str(), "r");
   Result r{-1, ""};
   if (!p) return r;

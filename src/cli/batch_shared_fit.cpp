@@ -1,0 +1,143 @@
+#include "cli/batch_shared_fit.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <frictionid/fitter.hpp>
+#include <frictionid/io/dataset_csv.hpp>
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/joint_fit.hpp>
+#include "cli/fit_options.hpp"
+#include "cli/option_parsers.hpp"
+#include "cli/terminal_observer.hpp"
+#include "io/atomic_file.hpp"
+#include "io/json_number.hpp"
+
+namespace frictionid::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::ordered_json estimate_json(const ParameterEstimate& e) {
+  nlohmann::ordered_json j;
+  j["value"] = json_number(e.value);
+  j["stderr"] = json_number(e.std_error);
+  j["ci95"] = e.ci95 ? nlohmann::ordered_json{json_number((*e.ci95)[0]), json_number((*e.ci95)[1])}
+                     : nlohmann::ordered_json(nullptr);
+  j["at_bound"] = e.at_bound;
+  return j;
+}
+
+// The run's summary row at the joint optimum: its own fit's row with the joint parameters,
+// cost and reduced chi².
+SummaryRow joint_row(const JointRunResult& run, const SummaryRow& own) {
+  FitResult r = run.separate;
+  r.parameters = run.parameters;
+  r.cost = run.cost;
+  r.chi2 = run.chi2;
+  r.reduced_chi2 = run.reduced_chi2;
+  return summary_row(run.label, r, own.covariates);
+}
+
+}  // namespace
+
+std::vector<std::string> parse_shared_option(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    const std::string name = text.substr(start, comma == std::string::npos ? comma : comma - start);
+    if (name.empty())
+      throw InputError("--shared: expected P[,P], e.g. kappa,h; got '" + text + "'");
+    if (!param_index(name))
+      throw InputError("--shared: unknown parameter '" + name +
+                       "' (f, kappa, h, a, b, m, n, p0, b_tilde)");
+    out.push_back(name);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+void check_shared_parameters(const std::vector<BatchRun>& runs,
+                             const std::vector<std::string>& shared) {
+  for (const BatchRun& run : runs) {
+    const FitSettings s = fit_settings_from_options(run.options, run.options.model);
+    const std::vector<int> used = model_parameters(s.model, s.law.kind);
+    for (const std::string& name : shared) {
+      const int i = *param_index(name);
+      if (std::find(used.begin(), used.end(), i) == used.end())
+        throw InputError("--shared: run " + run.label + ": " + name +
+                         " is not a parameter of the " + model_name(s.model) + " model");
+      if (s.params[i].fixed)
+        throw InputError("--shared: run " + run.label + ": shared parameter " + name + " is fixed");
+    }
+  }
+}
+
+void write_shared_fit(const std::vector<BatchRun>& runs, const std::vector<SummaryRow>& table,
+                      const std::vector<std::string>& shared, int threads,
+                      const std::atomic<bool>* interrupted, const std::string& dir) {
+  std::vector<std::unique_ptr<Dataset>> data;
+  std::vector<JointRunInput> inputs;
+  std::vector<std::size_t> index;  // inputs[k] is runs[index[k]]
+  std::vector<std::string> excluded;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (!table[i].ok) {
+      excluded.push_back(runs[i].label);
+      continue;
+    }
+    const BatchRun& run = runs[i];
+    data.push_back(std::make_unique<Dataset>(
+        run.file_data ? select_rows(*run.file_data, run.group_rows)
+                      : load_dataset_csv(run.path, parse_column_map(run.options.columns))));
+    inputs.push_back(
+        {run.label, data.back().get(), fit_settings_from_options(run.options, run.options.model)});
+    index.push_back(i);
+  }
+  if (inputs.empty()) throw FitError("--shared: no run was fitted, so there is no joint fit");
+  TerminalObserver observer(interrupted, /*progress=*/false);
+  JointFitResult joint;
+  try {
+    joint = fit_joint(inputs, shared, threads, &observer);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("--shared: ") + e.what());
+  }
+
+  std::vector<SummaryRow> rows = table;
+  for (std::size_t k = 0; k < joint.runs.size(); ++k)
+    rows[index[k]] = joint_row(joint.runs[k], table[index[k]]);
+
+  nlohmann::ordered_json j;
+  nlohmann::ordered_json params = nlohmann::ordered_json::object();
+  for (const auto& e : joint.shared) params[e.name] = estimate_json(e);
+  j["shared"] = params;
+  j["runs_fitted"] = joint.runs.size();
+  j["runs_excluded"] = excluded;
+  j["observations"] = joint.observations;
+  j["free_parameters"] = joint.free_parameters;
+  j["dof"] = joint.dof;
+  j["cost"] = json_number(joint.cost);
+  j["chi2"] = json_number(joint.chi2);
+  j["reduced_chi2"] = json_number(joint.reduced_chi2);
+  j["solver"] = {{"iterations", joint.iterations},
+                 {"converged", joint.converged},
+                 {"termination", joint.termination},
+                 {"linear_solver", joint.linear_solver}};
+  j["table"] = summary_json(rows);
+  const fs::path d(dir);
+  write_file_atomically((d / "shared.csv").string(), summary_csv(rows));
+  write_file_atomically(
+      (d / "shared.json").string(),
+      j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
+  std::printf("shared: %zu runs share", joint.runs.size());
+  for (const auto& e : joint.shared) {
+    std::printf(" %s = %.10g", e.name.c_str(), e.value);
+    if (e.std_error) std::printf(" +- %.3g", *e.std_error);
+  }
+  std::printf("; %s/shared.csv\n", dir.c_str());
+}
+
+}  // namespace frictionid::cli

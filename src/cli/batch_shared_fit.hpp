@@ -1,0 +1,32 @@
+// `frictionid batch --shared P[,P]`: after every run's own fit, one joint fit of the runs that
+// succeeded, in which the named parameters are common to all (joint_fit.hpp). Writes
+// DIR/shared.csv (the summary table's columns, one row per run, at the joint optimum) and
+// DIR/shared.json (the shared parameters, the joint statistics and the same rows).
+#pragma once
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include <frictionid/io/summary_table.hpp>
+#include "cli/batch_runs.hpp"
+
+namespace frictionid::cli {
+
+// The parameter names of --shared (comma-separated); throws InputError for an empty or unknown
+// name, before any run is fitted.
+std::vector<std::string> parse_shared_option(const std::string& text);
+
+// Throws InputError naming the run when a shared parameter is fixed in a run's settings or not
+// read by its model: checked before any run is fitted.
+void check_shared_parameters(const std::vector<BatchRun>& runs,
+                             const std::vector<std::string>& shared);
+
+// Fits the runs whose row in `table` is ok (the others stay failed rows with their error) and
+// writes the two files atomically. Throws FitError when the joint fit fails, InputError for a
+// shared parameter some run's settings hold fixed or its model does not read.
+void write_shared_fit(const std::vector<BatchRun>& runs, const std::vector<SummaryRow>& table,
+                      const std::vector<std::string>& shared, int threads,
+                      const std::atomic<bool>* interrupted, const std::string& dir);
+
+}  // namespace frictionid::cli

@@ -1,0 +1,253 @@
+// The joint fit (joint_fit.hpp, docs/physics.md §8.13): the runs' own fits, a common start for
+// the shared parameters, the joint local stage and the joint covariance by the Schur complement.
+#include <frictionid/joint_fit.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <set>
+
+#include <frictionid/fitter.hpp>
+
+#include "identify/fit_statistics.hpp"
+#include "identify/fitted_run.hpp"
+#include "identify/joint_stage.hpp"
+#include "identify/row_chunks.hpp"
+#include "identify/statistics.hpp"
+
+namespace frictionid {
+namespace {
+
+std::vector<int> shared_indices(const std::vector<std::string>& names) {
+  if (names.empty()) throw std::invalid_argument("--shared: name at least one parameter");
+  std::set<int> out;
+  for (const auto& n : names) {
+    const auto i = param_index(n);
+    if (!i) throw std::invalid_argument("--shared: unknown parameter '" + n + "'");
+    out.insert(*i);
+  }
+  return {out.begin(), out.end()};
+}
+
+// The run's problem with the shared parameters first among the free ones.
+LocalProblem shared_first(const LocalProblem& p, const std::vector<int>& shared,
+                          const std::string& label) {
+  LocalProblem q = p;
+  q.free = shared;
+  for (int i : shared)
+    if (std::find(p.free.begin(), p.free.end(), i) == p.free.end()) {
+      const bool read = std::find(p.used.begin(), p.used.end(), i) != p.used.end();
+      throw std::invalid_argument("run " + label + ": shared parameter " + param_names()[i] +
+                                  (read ? " is fixed" : " is not a parameter of its model"));
+    }
+  for (int i : p.free)
+    if (std::find(shared.begin(), shared.end(), i) == shared.end()) q.free.push_back(i);
+  return q;
+}
+
+// Inverse-variance weighted mean of the runs' own estimates (plain mean where a run has no
+// standard error), clamped into every run's bounds.
+double common_start(const std::vector<FittedRun>& fits, int i) {
+  double sw = 0.0, swx = 0.0, sum = 0.0;
+  bool weighted = true;
+  double lo = -HUGE_VAL, hi = HUGE_VAL;
+  for (const auto& f : fits) {
+    const ParameterEstimate* e = nullptr;
+    for (const auto& p : f.result.parameters)
+      if (p.name == param_names()[i]) e = &p;
+    const double x = f.x[i];
+    sum += x;
+    if (e && e->std_error && *e->std_error > 0.0) {
+      sw += 1.0 / (*e->std_error * *e->std_error);
+      swx += x / (*e->std_error * *e->std_error);
+    } else {
+      weighted = false;
+    }
+    lo = std::max(lo, f.settings->params[i].lower);
+    hi = std::min(hi, f.settings->params[i].upper);
+  }
+  const double x = weighted && sw > 0.0 ? swx / sw : sum / static_cast<double>(fits.size());
+  return std::clamp(x, lo, hi);
+}
+
+double plain_chi2(const LocalProblem& p, const ParamVector& x) {
+  FitSettings plain = *p.settings;
+  plain.loss = LossKind::None;
+  LocalProblem q = p;
+  q.settings = &plain;
+  return 2.0 * problem_cost(q, x);
+}
+
+// Inverse of a symmetric positive definite matrix through its equilibrated eigen-decomposition;
+// false when it is singular to working precision.
+bool spd_inverse(const Eigen::MatrixXd& h, Eigen::MatrixXd& out) {
+  const Eigen::Index n = h.rows();
+  if (n == 0) {
+    out.resize(0, 0);
+    return true;
+  }
+  Eigen::VectorXd d(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!(h(i, i) > 0.0) || !std::isfinite(h(i, i))) return false;
+    d[i] = 1.0 / std::sqrt(h(i, i));
+  }
+  const Eigen::MatrixXd e = d.asDiagonal() * h * d.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(e);
+  if (es.info() != Eigen::Success) return false;
+  const Eigen::VectorXd ev = es.eigenvalues();
+  if (!(ev.minCoeff() > 1e-14 * ev.maxCoeff())) return false;
+  out = d.asDiagonal() * es.eigenvectors() * ev.cwiseInverse().asDiagonal() *
+        es.eigenvectors().transpose() * d.asDiagonal();
+  return true;
+}
+
+ParameterEstimate estimate(const FitSettings& s, int i, double value, double variance,
+                           bool determined, double tq) {
+  ParameterEstimate e;
+  e.name = param_names()[i];
+  e.value = value;
+  e.initial = value;
+  e.lower = s.params[i].lower;
+  e.upper = s.params[i].upper;
+  e.fixed = s.params[i].fixed;
+  if (!e.fixed) {
+    e.at_bound = at_bound(value, e.lower, e.upper);
+    if (determined && std::isfinite(variance) && variance >= 0.0) {
+      e.std_error = std::sqrt(variance);
+      e.ci95 = std::array<double, 2>{value - tq * *e.std_error, value + tq * *e.std_error};
+    }
+  }
+  return e;
+}
+
+}  // namespace
+
+JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
+                         const std::vector<std::string>& shared_names, int threads,
+                         FitObserver* observer) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  const std::vector<int> shared = shared_indices(shared_names);
+  if (inputs.empty()) throw std::invalid_argument("a joint fit needs at least one run");
+  const int workers = resolve_thread_count(threads);
+
+  // 1. Every run alone: its optimum and the whitening its noise model gives.
+  std::vector<FittedRun> fits;
+  fits.reserve(inputs.size());
+  for (const auto& in : inputs) {
+    if (in.data == nullptr) throw std::invalid_argument("run " + in.label + ": no data");
+    FitSettings s = in.settings;
+    s.threads = workers;
+    try {
+      fits.push_back(fit_keeping_problem(s, *in.data, observer));
+    } catch (const FitError& e) {
+      throw FitError("run " + in.label + ": " + e.what());
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("run " + in.label + ": " + e.what());
+    }
+  }
+
+  // 2. One problem over all runs, from the common start.
+  JointProblem jp;
+  jp.shared = shared;
+  jp.threads = workers;
+  const bool parallel_runs = inputs.size() >= static_cast<std::size_t>(workers);
+  std::vector<double> start(shared.size());
+  for (std::size_t j = 0; j < shared.size(); ++j) start[j] = common_start(fits, shared[j]);
+  for (std::size_t r = 0; r < fits.size(); ++r) {
+    jp.runs.push_back(shared_first(fits[r].problem, shared, inputs[r].label));
+    jp.runs.back().threads = parallel_runs ? 1 : workers;
+    ParamVector x = fits[r].x;
+    for (std::size_t j = 0; j < shared.size(); ++j) x[shared[j]] = start[j];
+    jp.start.push_back(x);
+  }
+  if (!parallel_runs) jp.threads = 1;
+  const JointOutcome joint = joint_local_fit(jp, observer);
+  if (observer && observer->cancelled()) throw FitError("interrupted");
+  if (!std::isfinite(joint.cost))
+    throw FitError("the joint fit failed (" + joint.termination + ")");
+
+  // 3. The joint covariance: H = sum of the runs' J^T J, with the runs' own blocks eliminated.
+  const std::size_t ks = shared.size();
+  const auto kse = static_cast<Eigen::Index>(ks);
+  std::vector<Eigen::MatrixXd> h(fits.size());
+  std::vector<char> good(fits.size(), 1);
+  for_each_chunk(fits.size(), jp.threads, [&](std::size_t r) {
+    NormalEquations ne;
+    good[r] = normal_equations(jp.runs[r], joint.x[r], ne);
+    h[r] = ne.jtj;
+  });
+  if (std::any_of(good.begin(), good.end(), [](char g) { return g == 0; }))
+    throw FitError("the model is not finite at the joint optimum");
+  Eigen::MatrixXd schur = Eigen::MatrixXd::Zero(kse, kse);
+  std::vector<Eigen::MatrixXd> own_inverse(fits.size());
+  bool determined = true;
+  for (std::size_t r = 0; r < fits.size(); ++r) {
+    const Eigen::Index ko = h[r].rows() - kse;
+    const Eigen::MatrixXd hss = h[r].topLeftCorner(kse, kse);
+    const Eigen::MatrixXd hsp = h[r].topRightCorner(kse, ko);
+    if (!spd_inverse(h[r].bottomRightCorner(ko, ko), own_inverse[r])) {
+      determined = false;
+      continue;
+    }
+    schur += hss - hsp * own_inverse[r] * hsp.transpose();
+  }
+  Eigen::MatrixXd cov_ss;
+  determined = determined && spd_inverse(schur, cov_ss);
+
+  JointFitResult out;
+  out.iterations = joint.iterations;
+  out.converged = joint.converged;
+  out.termination = joint.termination;
+  out.linear_solver = joint.linear_solver;
+  out.free_parameters = ks;
+  for (std::size_t r = 0; r < fits.size(); ++r) {
+    for (const auto& cs : fits[r].result.channel_summaries) out.observations += cs.rows;
+    out.free_parameters += jp.runs[r].free.size() - ks;
+  }
+  out.dof = out.observations > out.free_parameters ? out.observations - out.free_parameters : 0;
+  const double tq = out.dof > 0 ? student_t_quantile(0.975, static_cast<double>(out.dof)) : 0.0;
+  const FitSettings& s0 = *fits[0].settings;
+  for (std::size_t j = 0; j < ks; ++j) {
+    const auto je = static_cast<Eigen::Index>(j);
+    out.shared.push_back(estimate(s0, shared[j], joint.x[0][shared[j]],
+                                  determined ? cov_ss(je, je) : NAN, determined, tq));
+  }
+
+  for (std::size_t r = 0; r < fits.size(); ++r) {
+    JointRunResult run;
+    run.label = inputs[r].label;
+    const LocalProblem& p = jp.runs[r];
+    const ParamVector& x = joint.x[r];
+    const Eigen::Index ko = h[r].rows() - kse;
+    Eigen::MatrixXd cov_pp;
+    if (determined) {
+      // Cov_pp = H_pp^-1 + H_pp^-1 H_ps Cov_ss H_sp H_pp^-1
+      const Eigen::MatrixXd g = own_inverse[r] * h[r].topRightCorner(kse, ko).transpose();
+      cov_pp = own_inverse[r] + g * cov_ss * g.transpose();
+    }
+    for (int i : p.used) {
+      const auto at = std::find(p.free.begin(), p.free.end(), i) - p.free.begin();
+      double var = NAN;
+      if (determined && at < static_cast<long>(p.free.size()))
+        var = at < kse ? cov_ss(at, at) : cov_pp(at - kse, at - kse);
+      run.parameters.push_back(estimate(*p.settings, i, x[i], var, determined, tq));
+    }
+    run.cost = problem_cost(p, x);
+    run.chi2 = plain_chi2(p, x);
+    for (const auto& cs : fits[r].result.channel_summaries) run.observations += cs.rows;
+    run.dof = static_cast<double>(run.observations) - static_cast<double>(ko) -
+              static_cast<double>(ks) / static_cast<double>(fits.size());
+    run.reduced_chi2 = run.dof > 0.0 ? run.chi2 / run.dof : 0.0;
+    out.cost += run.cost;
+    out.chi2 += run.chi2;
+    run.separate = std::move(fits[r].result);
+    out.runs.push_back(std::move(run));
+  }
+  out.reduced_chi2 = out.dof > 0 ? out.chi2 / static_cast<double>(out.dof) : 0.0;
+  out.time_s = std::chrono::duration<double>(clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace frictionid
