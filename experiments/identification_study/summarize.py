@@ -252,7 +252,7 @@ if icells:
           f"(replicate i is the same draw); {first['fits']} replicates per cell (fewer than the default "
           f"cells: each fit refits a few hundred times). Every fit with `--intervals profile "
           f"--bootstrap B` (Rademacher resamples, percentile interval; a median of "
-          f"{first['median_bootstrap_refits']} refits per fit entered it), so the four intervals are paired. Profile s.e.: the profile interval's "
+          f"{first['median_bootstrap_refits']:.0f} refits per fit entered it), so the four intervals are paired. Profile s.e.: the profile interval's "
           "half-width over the fit's t(0.975, dof); asymmetry: median over the fits of (upper − "
           "value)/(value − lower). Bootstrap s.e.: the standard deviation of the refits.", "",
           "| noise | model | parameter | fits | rel. bias | rel. RMSE | coverage, model-based | "
