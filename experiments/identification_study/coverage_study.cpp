@@ -3,13 +3,18 @@
 // setting) it generates replicated datasets with known per-channel noise, fits each with the
 // library's Fitter (default settings apart from the noise model and one thread per fit), and
 // writes one CSV line per fit and parameter: estimate, model-based standard error and ci95, HC3
-// sandwich standard error and its interval. summarize.py turns the lines into tables and a plot.
+// sandwich standard error and its interval. The interval cells (fewer replicates: each fit
+// refits hundreds of times) also ask for the profile interval and the wild bootstrap
+// (--intervals profile --bootstrap B) and add those intervals and the bootstrap standard error.
+// summarize.py turns the lines into tables and a plot.
 //
 //   coverage_study [--replicates N] [--replicates-exact N] [--baseline-replicates N]
-//                  [--rows R] [--jobs J] [--output FILE]
+//                  [--interval-replicates N] [--bootstrap-resamples B]
+//                  [--cells all|default|intervals] [--rows R] [--jobs J] [--output FILE]
 //
 // Deterministic: replicate i of a (noise, model) pair uses the same noise draw in every cell
-// (with and without sigma columns, default and constant noise model), whatever --jobs is.
+// (with and without sigma columns, default and constant noise model, interval cells), whatever
+// --jobs is.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -68,6 +73,9 @@ struct Cell {
   bool columns = false;
   NoiseModelKind noise_model = NoiseModelKind::Auto;
   int replicates = 0;
+  // Interval cells: profile intervals and a wild bootstrap of `bootstrap` resamples as well.
+  bool profile = false;
+  int bootstrap = 0;
 };
 
 struct Task {
@@ -103,6 +111,8 @@ Dataset make_data(const Dataset& clean, const std::array<double, kChannelCount>&
 
 int main(int argc, char** argv) {
   int replicates = 500, replicates_exact = 500, baseline = 300, jobs = 2;
+  int interval_replicates = 400, bootstrap_resamples = 199;
+  std::string which = "all";  // all, default (model-based and HC3 cells) or intervals
   std::size_t rows = 600;
   std::string output = "coverage_fits.csv";
   for (int i = 1; i < argc; ++i) {
@@ -120,6 +130,12 @@ int main(int argc, char** argv) {
       replicates_exact = std::stoi(next());
     else if (a == "--baseline-replicates")
       baseline = std::stoi(next());
+    else if (a == "--interval-replicates")
+      interval_replicates = std::stoi(next());
+    else if (a == "--bootstrap-resamples")
+      bootstrap_resamples = std::stoi(next());
+    else if (a == "--cells")
+      which = next();
     else if (a == "--rows")
       rows = std::stoul(next());
     else if (a == "--jobs")
@@ -130,6 +146,10 @@ int main(int argc, char** argv) {
       std::cerr << "unknown option " << a << "\n";
       return 2;
     }
+  }
+  if (which != "all" && which != "default" && which != "intervals") {
+    std::cerr << "--cells must be all, default or intervals, not " << which << "\n";
+    return 2;
   }
 
   const auto law = model::PressureLaw<double>::hertz();
@@ -152,7 +172,7 @@ int main(int argc, char** argv) {
   }
 
   std::vector<Cell> cells;
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < 3 && which != "intervals"; ++k)
     for (int m = 0; m < 3; ++m)
       for (bool columns : {false, true}) {
         const int n = models[m] == ModelKind::Exact ? replicates_exact : replicates;
@@ -161,21 +181,31 @@ int main(int argc, char** argv) {
         if (baseline > 0 && !columns)
           cells.push_back({k, models[m], columns, NoiseModelKind::Constant, std::min(n, baseline)});
       }
+  // Interval cells: the profile and the wild bootstrap on the same fits, default noise model, no
+  // sigma columns; relative and affine noise (the heteroscedastic conditions), every model.
+  if (which != "default" && interval_replicates > 0)
+    for (int k : {0, 2})
+      for (int m = 0; m < 3; ++m)
+        cells.push_back({k, models[m], false, NoiseModelKind::Auto, interval_replicates, true,
+                         bootstrap_resamples});
   std::vector<Task> tasks;
   for (int c = 0; c < static_cast<int>(cells.size()); ++c)
     for (int r = 1; r <= cells[c].replicates; ++r) tasks.push_back({c, r});
-  // Exact fits are slowest: start them first so the workers finish together.
-  std::stable_sort(tasks.begin(), tasks.end(), [&](const Task& x, const Task& y) {
-    return (cells[x.cell].model == ModelKind::Exact) > (cells[y.cell].model == ModelKind::Exact);
-  });
+  // Slowest first (interval cells, then exact fits) so the workers finish together.
+  auto weight = [&](const Task& t) {
+    return 2 * cells[t.cell].profile + (cells[t.cell].model == ModelKind::Exact);
+  };
+  std::stable_sort(tasks.begin(), tasks.end(),
+                   [&](const Task& x, const Task& y) { return weight(x) > weight(y); });
 
   std::ofstream out(output);
   if (!out) {
     std::cerr << "cannot write " << output << "\n";
     return 1;
   }
-  out << "noise,model,columns,noise_model,replicate,status,seconds,dof,chosen,parameter,truth,"
-         "value,stderr,ci_lo,ci_hi,stderr_sandwich,hc3_lo,hc3_hi\n";
+  out << "noise,model,columns,noise_model,methods,replicate,status,seconds,dof,chosen,parameter,"
+         "truth,value,stderr,ci_lo,ci_hi,stderr_sandwich,hc3_lo,hc3_hi,profile_lo,profile_hi,"
+         "profile_closed,stderr_bootstrap,bootstrap_lo,bootstrap_hi,bootstrap_refits\n";
   for (int k = 0; k < 3; ++k)
     for (int m = 0; m < 3; ++m) {
       std::cerr << "sigma_abs " << kConditions[k].name << " " << model_name(models[m]) << ":";
@@ -198,11 +228,14 @@ int main(int argc, char** argv) {
                     noise_seed(cell.condition, cell.model, tasks[t].replicate));
       FitSettings s = FitSettings::defaults(cell.model, law, "hertz");
       s.noise_model = cell.noise_model;
-      s.threads = 1;
+      s.threads = 1;  // the bootstrap's refits too: the fits run in parallel instead
+      if (cell.profile) s.intervals = IntervalMethod::Profile;
+      s.bootstrap = cell.bootstrap;
       std::ostringstream line;
       const std::string head = std::string(kConditions[cell.condition].name) + "," +
                                model_name(cell.model) + "," + (cell.columns ? "yes" : "no") + "," +
                                noise_model_name(cell.noise_model) + "," +
+                               (cell.profile ? "profile+bootstrap" : "default") + "," +
                                std::to_string(tasks[t].replicate);
       line.precision(17);
       const auto f0 = std::chrono::steady_clock::now();
@@ -231,14 +264,24 @@ int main(int argc, char** argv) {
             line << ",,,";
           if (p.std_error_sandwich)
             line << *p.std_error_sandwich << "," << p.value - tq * *p.std_error_sandwich << ","
-                 << p.value + tq * *p.std_error_sandwich << "\n";
+                 << p.value + tq * *p.std_error_sandwich << ",";
           else
-            line << ",,\n";
+            line << ",,,";
+          if (p.ci95_profile)
+            line << (*p.ci95_profile)[0] << "," << (*p.ci95_profile)[1] << ","
+                 << (p.profile_closed[0] && p.profile_closed[1] ? 1 : 0) << ",";
+          else
+            line << ",,,";
+          if (p.std_error_bootstrap && p.ci95_bootstrap)
+            line << *p.std_error_bootstrap << "," << (*p.ci95_bootstrap)[0] << ","
+                 << (*p.ci95_bootstrap)[1] << "," << r.bootstrap_replicates << "\n";
+          else
+            line << ",,,\n";
         }
       } catch (const std::exception& e) {
         const double secs =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - f0).count();
-        line << head << ",failed," << secs << ",,,,,,,,,,,\n";
+        line << head << ",failed," << secs << ",,,,,,,,,,,,,,,,,,\n";
       }
       const std::size_t n = ++done;
       std::lock_guard<std::mutex> lock(mu);

@@ -5,13 +5,17 @@
 #     fit): relative, absolute and affine Gaussian noise, each different per channel; the seed,
 #     corrected and exact models (Hertz pressure); without and with sigma columns (the true
 #     sigma per row); per fit the model-based ci95 and the HC3 sandwich interval; the baseline
-#     --noise-model constant on the same datasets. Writes results.md, results.csv, coverage.svg.
+#     --noise-model constant on the same datasets; interval cells (relative and affine noise,
+#     every model, no sigma columns, NI replicates) that also compute the profile interval and
+#     a wild bootstrap of NBOOT resamples. Writes results.md, results.csv, coverage.svg.
 #  B. (GLOBAL=1 only) Global stage: T random truths, noise-free data, `frictionid fit` with the
 #     bounds box only, 3000 and 500 evaluations; writes results_global.csv and results_global.md.
 # See the "Identification study" section of experiments/README.md.
 #
-#   experiments/identification_study/run.sh                  # ~17 min on 2 shared cores
-#   N=100 NE=50 NB=50 experiments/identification_study/run.sh # a quick smaller run
+#   experiments/identification_study/run.sh                  # ~35 min on 2 shared cores
+#   N=100 NE=50 NB=50 NI=50 experiments/identification_study/run.sh # a quick smaller run
+#   CELLS=intervals experiments/identification_study/run.sh  # only the interval cells (~15 min),
+#       merged into the existing results.md/csv/svg; the default cells' numbers are kept as they are
 #
 # Builds the driver in $BUILD_DIR (default build-study, Release, benchmarks on); scratch to out/.
 set -euo pipefail
@@ -23,6 +27,9 @@ py=/usr/bin/python3
 N="${N:-1000}"         # replicates per default-method cell, seed and corrected models
 NE="${NE:-500}"        # ... exact model
 NB="${NB:-500}"        # replicates of the constant-noise baseline per cell (no sigma columns)
+NI="${NI:-400}"        # replicates per interval cell (profile and bootstrap)
+NBOOT="${NBOOT:-199}"  # wild-bootstrap resamples per fit in the interval cells
+CELLS="${CELLS:-all}"  # all, or intervals (merge the interval cells into the existing results)
 ROWS="${ROWS:-600}"    # rows of generate's default design
 JOBS="${JOBS:-2}"      # fits in parallel
 BUILD_DIR="${BUILD_DIR:-$root/build-study}"
@@ -38,16 +45,29 @@ cmake -S "$root" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DFRICTIONID_BUILD_T
 cmake --build "$BUILD_DIR" -j "$JOBS" --target coverage_study >> "$out/cmake.log"
 cp "$BUILD_DIR/experiments/coverage_study" "$out/coverage_study"
 commit="$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
-echo "run.sh: coverage study, N=$N NE=$NE NB=$NB ROWS=$ROWS on $JOBS jobs ..." >&2
+case "$CELLS" in
+  all) merge=() ;;
+  intervals) merge=(--merge) ;;
+  *) echo "run.sh: CELLS must be all or intervals, not $CELLS" >&2; exit 2 ;;
+esac
+echo "run.sh: coverage study ($CELLS cells), N=$N NE=$NE NB=$NB NI=$NI NBOOT=$NBOOT ROWS=$ROWS on $JOBS jobs ..." >&2
 start=$(date +%s.%N)
-"$out/coverage_study" --replicates "$N" --replicates-exact "$NE" --baseline-replicates "$NB" \
+"$out/coverage_study" --cells "$CELLS" --replicates "$N" --replicates-exact "$NE" \
+  --baseline-replicates "$NB" --interval-replicates "$NI" --bootstrap-resamples "$NBOOT" \
   --rows "$ROWS" --jobs "$JOBS" --output "$out/coverage_fits.csv" 2> "$out/coverage_study.log"
 wall=$(echo "$(date +%s.%N) - $start" | bc)
-note="coverage_study at commit $commit; $ROWS rows of the default design, Hertz pressure, truth \
-f = 0.9, κ = 1.15, h = 0.08 (a, b, m, b̃, p0 of the Hertz law); default fit settings (global \
-stage crs2 3000 evaluations, 4 starts) with one thread per fit, $JOBS fits in parallel on \
-$(nproc) CPUs; $N replicates per cell (exact model: $NE), baseline $NB."
-"$py" "$here/summarize.py" "$out/coverage_fits.csv" "$here" "$note" "$wall" "$out"
+settings="$ROWS rows of the default design, Hertz pressure, truth f = 0.9, κ = 1.15, h = 0.08 \
+(a, b, m, b̃, p0 of the Hertz law); default fit settings (global stage crs2 3000 evaluations, 4 \
+starts) with one thread per fit, $JOBS fits in parallel on $(nproc) CPUs"
+if [[ "$CELLS" = all ]]; then
+  note="coverage_study at commit $commit; $settings; $N replicates per cell (exact model: $NE), \
+baseline $NB; interval cells $NI replicates, bootstrap $NBOOT resamples."
+else
+  note="Interval cells: coverage_study --cells intervals at commit $commit; $settings; $NI \
+replicates per cell, --intervals profile --bootstrap $NBOOT (wild bootstrap seed: the fit's \
+seed, 1)."
+fi
+"$py" "$here/summarize.py" "$out/coverage_fits.csv" "$here" "$note" "$wall" "$out" "${merge[@]}"
 echo "run.sh: wrote $here/results.md, results.csv, coverage.svg" >&2
 
 [[ "${GLOBAL:-0}" = 1 ]] || exit 0

@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -128,6 +131,112 @@ TEST(Sandwich, Hc3StandardErrorsMatchADirectComputation) {
     // and the model-based one is sqrt(B_jj) (sigma columns: absolute)
     EXPECT_NEAR(*p->std_error, std::sqrt(B(j, j)), 1e-5 * std::sqrt(B(j, j))) << p->name;
   }
+}
+
+// Too few observations to estimate a noise model from (at most 2k + 2 for k free parameters):
+// where a fitted channel has no sigma column the covariance is the whitened (J^T J)^-1 times the
+// reduced chi², whose degrees of freedom are observations - k; with sigma columns on every fitted
+// channel it is (J^T J)^-1 as it stands (docs/physics.md (8.4)). Recomputed here from the model:
+// residuals whitened by the sigma column, else by the channel's upper median magnitude (§8.2),
+// Jacobian by central differences, s² = sum r² / (n - k). One channel without sigma columns makes
+// the whitening cancel: s² (J^T J)^-1 of the raw residuals, the textbook least-squares covariance.
+struct TinyFit {
+  std::vector<Channel> channels;
+  std::vector<const char*> free;
+  std::size_t rows = 0;
+  std::vector<Channel> with_sigma;  // channels that keep their sigma column
+};
+
+void expect_covariance_from_jacobian(const TinyFit& t) {
+  const Law law = Law::hertz();
+  const auto truth = default_parameters(law, 0.9, 1.2, 0.1);
+  SyntheticDesign design;
+  design.rows = t.rows;
+  Dataset d = generate_dataset(ModelKind::Seed, law, truth, design, NoiseSpec{0.02, 0.0, true}, 5);
+  for (int c = 0; c < kChannelCount; ++c)
+    if (std::find(t.with_sigma.begin(), t.with_sigma.end(), static_cast<Channel>(c)) ==
+        t.with_sigma.end())
+      d.sigma[c].clear();
+  FitSettings s = FitSettings::defaults(ModelKind::Seed, law, "hertz");
+  s.channels = t.channels;
+  for (const char* name : {"f", "kappa", "h", "a", "b", "m"})
+    if (std::find_if(t.free.begin(), t.free.end(),
+                     [&](const char* f) { return std::string(f) == name; }) == t.free.end())
+      s.fix(name, truth[*param_index(name)]);
+  const FitResult r = Fitter(s).fit(d);
+  const std::size_t n = t.channels.size() * t.rows, k = t.free.size();
+  ASSERT_LE(n, 2 * k + 2) << "the tiny-data path needs at most 2k + 2 observations";
+  ASSERT_EQ(r.residuals, n);
+
+  // Whitening per channel, independent of the program: sigma column, else median |value|.
+  const bool all_sigma = t.with_sigma.size() >= t.channels.size();
+  std::array<double, kChannelCount> median{};
+  for (Channel c : t.channels) {
+    std::vector<double> m;
+    for (double v : d.value[static_cast<int>(c)]) m.push_back(std::fabs(v));
+    std::sort(m.begin(), m.end());
+    median[static_cast<int>(c)] = m[m.size() / 2];
+  }
+  ParamVector x = default_parameters(law);
+  for (const auto& p : r.parameters) x[*param_index(p.name)] = p.value;
+  auto residuals = [&](const ParamVector& at) {
+    const ModelEvaluator<double> model(ModelKind::Seed, law, at.data());
+    std::vector<double> out;
+    for (std::size_t i = 0; i < d.rows(); ++i) {
+      const auto p = model({d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]});
+      const double pred[kChannelCount] = {p.T_x, p.T_y, p.M_z, p.M_roll};
+      for (Channel c : t.channels) {
+        const int ci = static_cast<int>(c);
+        const double w = d.has_sigma(c) ? d.sigma[ci][i] : median[ci];
+        out.push_back((pred[ci] - d.value[ci][i]) / w);
+      }
+    }
+    return out;
+  };
+  const std::vector<double> r0 = residuals(x);
+  const auto m = static_cast<Eigen::Index>(r0.size()), kk = static_cast<Eigen::Index>(k);
+  Eigen::MatrixXd J(m, kk);
+  for (Eigen::Index j = 0; j < kk; ++j) {
+    const int i = *param_index(t.free[static_cast<std::size_t>(j)]);
+    const double h = 1e-6 * std::max(1.0, std::fabs(x[i]));
+    ParamVector up = x, down = x;
+    up[i] += h;
+    down[i] -= h;
+    const auto ru = residuals(up), rd = residuals(down);
+    for (Eigen::Index a = 0; a < m; ++a)
+      J(a, j) = (ru[static_cast<std::size_t>(a)] - rd[static_cast<std::size_t>(a)]) / (2 * h);
+  }
+  double ss = 0.0;
+  for (double e : r0) ss += e * e;
+  const double s2 = all_sigma ? 1.0 : ss / static_cast<double>(n - k);
+  const Eigen::MatrixXd cov = s2 * (J.transpose() * J).inverse();
+
+  EXPECT_EQ(r.covariance_scaled_by_reduced_chi2, !all_sigma);
+  EXPECT_NEAR(r.chi2, ss, 1e-9 * ss);
+  for (Eigen::Index j = 0; j < kk; ++j) {
+    const auto* p = r.parameter(t.free[static_cast<std::size_t>(j)]);
+    ASSERT_TRUE(p && p->std_error) << t.free[static_cast<std::size_t>(j)];
+    EXPECT_NEAR(*p->std_error, std::sqrt(cov(j, j)), 1e-5 * std::sqrt(cov(j, j))) << p->name;
+  }
+}
+
+TEST(Covariance, OnTooFewRowsForANoiseModelIsSSquaredTimesJtJInverseWithNMinusKDof) {
+  // T_x = f N t(eps; a) alone (docs/physics.md §3), f and a free: 5 observations <= 2 * 2 + 2,
+  // 3 degrees of freedom.
+  expect_covariance_from_jacobian({{Channel::T_x}, {"f", "a"}, 5, {}});
+  // T_x and M_z, f, a and m free: 8 observations, 5 degrees of freedom; whitened per channel.
+  expect_covariance_from_jacobian({{Channel::T_x, Channel::M_z}, {"f", "a", "m"}, 4, {}});
+}
+
+TEST(Covariance, OnTooFewRowsWithSigmaColumnsOnSomeChannelsIsStillScaledByTheReducedChi2) {
+  expect_covariance_from_jacobian(
+      {{Channel::T_x, Channel::M_z}, {"f", "a", "m"}, 4, {Channel::T_x}});
+}
+
+TEST(Covariance, OnTooFewRowsWithSigmaColumnsOnEveryChannelIsNotRescaled) {
+  expect_covariance_from_jacobian({{Channel::T_x}, {"f", "a"}, 5, {Channel::T_x}});
+  expect_covariance_from_jacobian(
+      {{Channel::T_x, Channel::M_z}, {"f", "a", "m"}, 4, {Channel::T_x, Channel::M_z}});
 }
 
 }  // namespace
