@@ -46,6 +46,8 @@ def batch_parser() -> argparse.ArgumentParser:
                    help="directory for summary.csv, summary.json and runs/")
     p.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                    help="an existing Dask scheduler (default: start a LocalCluster)")
+    p.add_argument("--timeout", type=float, default=30.0, metavar="SECONDS",
+                   help="give up connecting to --scheduler after this long (exit 1)")
     p.add_argument("--workers", type=whole_number(1), metavar="N",
                    help="worker processes of the LocalCluster (default: one per core)")
     p.add_argument("--model", default="seed", help="seed, corrected or exact")
@@ -97,7 +99,7 @@ def run_batch(args: argparse.Namespace) -> int:
     if args.scheduler:
         from distributed import Client
 
-        with Client(args.scheduler, timeout="30s") as client:
+        with Client(args.scheduler, timeout=f"{args.timeout}s") as client:
             outcome = fdask.run_on_cluster(runs, client, threads=args.threads,
                                            with_reports=with_reports, retries=args.retries)
     else:

@@ -169,9 +169,11 @@ def run_on_cluster(runs: List[Run], client: Optional[Any] = None, *, threads: in
             return run_on_cluster(runs, own, threads=threads, with_reports=with_reports,
                                   retries=retries)
     batch = uuid.uuid4().hex[:8]
-    # Each run's rows are sent once, to one worker, rather than inside the task graph.
-    columns = [client.scatter(run.columns, hash=False) if run.columns is not None else None
-               for run in runs]
+    # Each run's rows are sent once, to one worker, rather than inside the task graph. (A list:
+    # scatter would take a dict's keys, the column names, for the data's keys.)
+    in_memory = [run.columns for run in runs if run.columns is not None]
+    scattered = iter(client.scatter(in_memory, hash=False) if in_memory else [])
+    columns = [next(scattered) if run.columns is not None else None for run in runs]
     futures = [
         client.submit(fit_run, run.spec, threads, with_reports, data,
                       key=f"frictionid-fit-{k}-{run.directory}-{batch}",
