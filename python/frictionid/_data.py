@@ -23,7 +23,7 @@ CHANNELS = ("T_x", "T_y", "M_z", "M_roll")
 DataLike = Union[str, "os.PathLike[str]", Mapping[str, Any], Any]
 
 
-def _column_spec(columns: Optional[Mapping[str, str]]) -> str:
+def column_spec(columns: Optional[Mapping[str, str]]) -> str:
     """{"v_x": "speed"} -> "v_x=speed", the command line's --columns."""
     return ",".join(f"{k}={v}" for k, v in (columns or {}).items())
 
@@ -37,14 +37,14 @@ def load(data: DataLike, columns: Optional[Mapping[str, str]] = None) -> "_frict
     if isinstance(data, _frictionid.Dataset):
         return data
     if isinstance(data, (str, os.PathLike)):
-        return _frictionid.load_dataset_csv(os.fspath(data), _column_spec(columns))
+        return _frictionid.load_dataset_csv(os.fspath(data), column_spec(columns))
     if not hasattr(data, "keys"):
         raise TypeError(
             "data must be a CSV path, a pandas DataFrame or a dict of arrays, "
             f"not {type(data).__name__}")
     source = "DataFrame" if hasattr(data, "iloc") else "dict"
     # Checked by the command line's --columns parser: the same names, hints and messages.
-    header_of = _frictionid.parse_column_map(_column_spec(columns))
+    header_of = _frictionid.parse_column_map(column_spec(columns))
     arrays = {}
     for name in COLUMNS:
         key = header_of.get(name, name)

@@ -73,6 +73,34 @@ def fit(
     The GIL is released while the fit runs: fits in several Python threads run in parallel.
     """
     dataset = _data.load(data, columns)
+    o = options(model, pressure, fix=fix, bounds=bounds, start=start, loss=loss,
+                channels=channels, noise_model=noise_model, seed=seed, threads=threads,
+                starts=starts, global_search=global_search, global_algorithm=global_algorithm,
+                global_evaluations=global_evaluations, global_subsample=global_subsample)
+    return FitResult(_frictionid.fit(dataset, o), model=model, pressure=pressure)
+
+
+def options(
+    model: str = "seed",
+    pressure: str = "hertz",
+    *,
+    fix: Optional[Mapping[str, float]] = None,
+    bounds: Optional[Mapping[str, Tuple[float, float]]] = None,
+    start: Optional[Mapping[str, float]] = None,
+    loss: Union[str, Sequence] = "none",
+    channels: Optional[Union[str, Iterable[str]]] = None,
+    noise_model: str = "auto",
+    seed: int = 1,
+    threads: int = 0,
+    starts: int = 4,
+    global_search: bool = True,
+    global_algorithm: str = "crs2",
+    global_evaluations: int = 3000,
+    global_subsample: int = 400,
+    columns: Optional[Mapping[str, str]] = None,
+) -> "_frictionid.FitOptions":
+    """The command line's fit options for :func:`fit`'s keyword arguments (``columns`` becomes
+    ``--columns``, which only a file reader uses)."""
     o = _frictionid.FitOptions()
     o.model = model
     o.pressure = pressure
@@ -89,4 +117,5 @@ def fit(
     o.global_algorithm = global_algorithm
     o.global_evaluations = global_evaluations
     o.global_subsample = global_subsample
-    return FitResult(_frictionid.fit(dataset, o), model=model, pressure=pressure)
+    o.columns = _data.column_spec(columns)
+    return o

@@ -144,23 +144,6 @@ void check_options(const FitOptions& o, const std::string& file, std::size_t lin
   }
 }
 
-// A covariate may not take the name of a column the summary table already has.
-void check_covariate_name(const std::string& name, const std::string& where) {
-  static const char* const reserved[] = {"label",        "status",      "rows",  "cost",
-                                         "reduced_chi2", "warnings",    "error", "mean_N",
-                                         "mean_speed",   "mean_omega_R"};
-  bool taken = std::find(std::begin(reserved), std::end(reserved), name) != std::end(reserved) ||
-               name.rfind("noise_", 0) == 0;
-  for (const char* p : param_names())
-    for (const char* suffix : {"", "_stderr", "_ci95_lo", "_ci95_hi"})
-      taken = taken || name == std::string(p) + suffix;
-  if (taken)
-    throw InputError(where, 0, 0,
-                     "column '" + name +
-                         "' would clash with the summary table's own column of "
-                         "that name; rename it");
-}
-
 std::vector<BatchEntry> manifest_entries(const std::string& manifest, const FitOptions& o) {
   std::ifstream in(manifest);
   std::string text;
@@ -268,6 +251,22 @@ std::string directory_name(const std::string& label) {
 }
 
 }  // namespace
+
+void check_covariate_name(const std::string& name, const std::string& where) {
+  static const char* const reserved[] = {"label",        "status",      "rows",  "cost",
+                                         "reduced_chi2", "warnings",    "error", "mean_N",
+                                         "mean_speed",   "mean_omega_R"};
+  bool taken = std::find(std::begin(reserved), std::end(reserved), name) != std::end(reserved) ||
+               name.rfind("noise_", 0) == 0;
+  for (const char* p : param_names())
+    for (const char* suffix : {"", "_stderr", "_ci95_lo", "_ci95_hi"})
+      taken = taken || name == std::string(p) + suffix;
+  if (taken)
+    throw InputError(where, 0, 0,
+                     "column '" + name +
+                         "' would clash with the summary table's own column of "
+                         "that name; rename it");
+}
 
 Dataset select_rows(const Dataset& d, const std::vector<std::size_t>& rows) {
   Dataset out;

@@ -34,6 +34,10 @@ struct BatchRun {
 std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, const FitOptions& o,
                                       const std::string& group_by, const std::string& key_extra);
 
+// Throws InputError (naming `where`) when a covariate (a manifest or --group-by column) would
+// take the name of one of the summary table's own columns.
+void check_covariate_name(const std::string& name, const std::string& where);
+
 // The rows `rows` of d, every column (extra ones too) in that order.
 Dataset select_rows(const Dataset& d, const std::vector<std::size_t>& rows);
 

@@ -17,6 +17,7 @@
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/report_writer.hpp>
 #include <frictionid/io/summary_table.hpp>
+#include "cli/batch_fit_run.hpp"
 #include "cli/batch_journal.hpp"
 #include "cli/batch_runs.hpp"
 #include "cli/batch_shared_fit.hpp"
@@ -57,25 +58,10 @@ void write_run_report(const BatchContext& c, const BatchRun& run, const FitResul
 
 // One run's outcome: a failure of any kind is a failed row, never the end of the batch.
 SummaryRow fit_run(const BatchContext& c, const BatchRun& run) {
-  Dataset data;
-  try {
-    data = run.file_data ? select_rows(*run.file_data, run.group_rows)
-                         : load_dataset_csv(run.path, parse_column_map(run.options.columns));
-  } catch (const std::exception& e) {
-    return failed_summary_row(run.label, 0, e.what(), run.covariates);
-  }
-  auto covariates = dataset_covariates(data);
-  covariates.insert(covariates.end(), run.covariates.begin(), run.covariates.end());
-  try {
-    FitSettings s = fit_settings_from_options(run.options, run.options.model);
-    s.threads = c.fit_threads;
-    TerminalObserver observer(c.interrupted, /*progress=*/false);
-    const FitResult r = Fitter(s).fit(data, &observer);
+  TerminalObserver observer(c.interrupted, /*progress=*/false);
+  return fit_batch_run(run, c.fit_threads, &observer, [&](const FitResult& r, const Dataset& data) {
     write_run_report(c, run, r, data);
-    return summary_row(run.label, r, std::move(covariates));
-  } catch (const std::exception& e) {
-    return failed_summary_row(run.label, data.rows(), e.what(), std::move(covariates));
-  }
+  });
 }
 
 std::string duration_text(double s) {

@@ -26,4 +26,5 @@ PYBIND11_MODULE(_frictionid, m) {
   frictionid::python::register_evaluate(m);
   frictionid::python::register_generate(m);
   frictionid::python::register_simulate(m);
+  frictionid::python::register_batch(m);
 }

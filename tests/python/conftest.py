@@ -54,3 +54,32 @@ def cli_report(run_cli, tmp_path):
         return json.loads((out / "report.json").read_text())
 
     return fit
+
+
+@pytest.fixture(scope="session")
+def dask_client():
+    """A real Dask cluster for the scale-out tests: two worker processes of one thread each on
+    loopback, shared by the tests of a session (starting one takes seconds)."""
+    import logging
+
+    from distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=2, processes=True, threads_per_worker=1, host="127.0.0.1",
+                      dashboard_address=None, silence_logs=logging.ERROR) as cluster, \
+            Client(cluster) as client:
+        yield client
+
+
+@pytest.fixture(scope="session")
+def campaign(exe, tmp_path_factory):
+    """A small campaign written by `frictionid generate`: three loads, each its own file with its
+    own f (as a real tire's friction falls with load), one common kappa and h, and one file that
+    is not a dataset (its run fails)."""
+    directory = tmp_path_factory.mktemp("campaign")
+    for load, f in ((1000, 0.85), (2000, 0.8), (3000, 0.75)):
+        subprocess.run([exe, "generate", "--model", "exact", "--pressure", "hertz", "--param",
+                        f"f={f},kappa=1.2,h=0.1", "--rows", "200", "--noise", "0.01", "--seed",
+                        str(load), "--loads", str(load), "--output",
+                        str(directory / f"load_{load}.csv")], check=True, capture_output=True)
+    (directory / "bad.csv").write_text("not,a,dataset\n1,2,3\n")
+    return directory

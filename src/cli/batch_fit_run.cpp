@@ -1,0 +1,38 @@
+#include "cli/batch_fit_run.hpp"
+
+#include <exception>
+
+#include <frictionid/fitter.hpp>
+#include <frictionid/io/dataset_csv.hpp>
+#include "cli/fit_options.hpp"
+#include "cli/option_parsers.hpp"
+
+namespace frictionid::cli {
+
+SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer,
+                         const RunFitted& on_fitted) {
+  Dataset data;
+  try {
+    if (run.file_data) {
+      data = select_rows(*run.file_data, run.group_rows);
+    } else {
+      data = load_dataset_csv(run.path, parse_column_map(run.options.columns));
+      if (!run.group_rows.empty()) data = select_rows(data, run.group_rows);
+    }
+  } catch (const std::exception& e) {
+    return failed_summary_row(run.label, 0, e.what(), run.covariates);
+  }
+  auto covariates = dataset_covariates(data);
+  covariates.insert(covariates.end(), run.covariates.begin(), run.covariates.end());
+  try {
+    FitSettings s = fit_settings_from_options(run.options, run.options.model);
+    s.threads = threads;
+    const FitResult r = Fitter(s).fit(data, observer);
+    if (on_fitted) on_fitted(r, data);
+    return summary_row(run.label, r, std::move(covariates));
+  } catch (const std::exception& e) {
+    return failed_summary_row(run.label, data.rows(), e.what(), std::move(covariates));
+  }
+}
+
+}  // namespace frictionid::cli

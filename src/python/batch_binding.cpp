@@ -1,0 +1,202 @@
+// The pieces of `frictionid batch` that the Python scale-out (python/frictionid/dask.py) runs on
+// a Dask cluster: the client plans the runs with the batch's own planner, each worker reads and
+// fits one run with the batch's own fit_batch_run and sends back its summary row as JSON, and the
+// client writes the table with the batch's own summary_csv / summary_json. So the table is the
+// batch's, byte for byte (docs/design.md §2.4, §4.5).
+//
+// A run travels as JSON text (its label, file, group rows, options and covariates): plain data
+// that Dask pickles cheaply and that holds no loaded rows, which the worker reads itself.
+#include <algorithm>
+#include <numeric>
+
+#include <pybind11/stl.h>
+#include <nlohmann/json.hpp>
+
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/io/report_writer.hpp>
+#include <frictionid/io/summary_table.hpp>
+#include "cli/batch_fit_run.hpp"
+#include "cli/batch_runs.hpp"
+#include "cli/commands.hpp"
+#include "cli/fit_options.hpp"
+#include "io/atomic_file.hpp"
+#include "python/bindings.hpp"
+
+namespace py = pybind11;
+using ojson = nlohmann::ordered_json;
+
+namespace frictionid::python {
+
+namespace {
+
+std::string dump(const ojson& j, int indent = -1) {
+  return j.dump(indent, ' ', false, ojson::error_handler_t::replace);
+}
+
+// Every FitOptions field that fit_settings_from_options reads, except threads (set per worker).
+ojson options_json(const cli::FitOptions& o) {
+  return {{"model", o.model},
+          {"pressure", o.pressure},
+          {"fix", o.fix},
+          {"bounds", o.bounds},
+          {"initial", o.initial},
+          {"loss", o.loss},
+          {"channels", o.channels},
+          {"columns", o.columns},
+          {"noise_model", o.noise_model},
+          {"intervals", o.intervals},
+          {"bootstrap", o.bootstrap},
+          {"starts", o.starts},
+          {"seed", o.seed},
+          {"global_evaluations", o.global_evaluations},
+          {"global_subsample", o.global_subsample},
+          {"no_global", o.no_global},
+          {"global_algorithm", o.global_algorithm}};
+}
+
+cli::FitOptions options_from_json(const ojson& j) {
+  cli::FitOptions o;
+  o.model = j.at("model").get<std::string>();
+  o.pressure = j.at("pressure").get<std::string>();
+  o.fix = j.at("fix").get<std::string>();
+  o.bounds = j.at("bounds").get<std::string>();
+  o.initial = j.at("initial").get<std::string>();
+  o.loss = j.at("loss").get<std::string>();
+  o.channels = j.at("channels").get<std::string>();
+  o.columns = j.at("columns").get<std::string>();
+  o.noise_model = j.at("noise_model").get<std::string>();
+  o.intervals = j.at("intervals").get<std::string>();
+  o.bootstrap = j.at("bootstrap").get<int>();
+  o.starts = j.at("starts").get<int>();
+  o.seed = j.at("seed").get<unsigned long long>();
+  o.global_evaluations = j.at("global_evaluations").get<long>();
+  o.global_subsample = j.at("global_subsample").get<std::size_t>();
+  o.no_global = j.at("no_global").get<bool>();
+  o.global_algorithm = j.at("global_algorithm").get<std::string>();
+  o.report = ".";  // required by the settings code; the worker writes no report directory
+  return o;
+}
+
+ojson covariates_json(const std::vector<Covariate>& covariates) {
+  ojson out = ojson::array();
+  for (const auto& c : covariates)
+    out.push_back({c.name, std::holds_alternative<double>(c.value)
+                               ? ojson(std::get<double>(c.value))
+                               : ojson(std::get<std::string>(c.value))});
+  return out;
+}
+
+std::string run_json(const cli::BatchRun& run) {
+  ojson j = {{"label", run.label},
+             {"directory", run.directory},
+             {"path", run.path},
+             {"options", options_json(run.options)},
+             {"covariates", covariates_json(run.covariates)}};
+  j["group_rows"] = run.file_data ? ojson(run.group_rows) : ojson(nullptr);
+  return dump(j);
+}
+
+cli::BatchRun run_from_json(const std::string& text) {
+  const ojson j = ojson::parse(text);
+  cli::BatchRun run;
+  run.label = j.at("label").get<std::string>();
+  run.directory = j.at("directory").get<std::string>();
+  run.path = j.at("path").get<std::string>();
+  run.options = options_from_json(j.at("options"));
+  for (const auto& c : j.at("covariates")) {
+    if (c.at(1).is_string())
+      run.covariates.push_back({c.at(0).get<std::string>(), c.at(1).get<std::string>()});
+    else
+      run.covariates.push_back({c.at(0).get<std::string>(), c.at(1).get<double>()});
+  }
+  if (!j.at("group_rows").is_null())
+    run.group_rows = j.at("group_rows").get<std::vector<std::size_t>>();
+  return run;
+}
+
+// The checks `frictionid batch` makes before any work, then its plan, one JSON text per run.
+std::vector<std::string> plan(const std::vector<std::string>& inputs, cli::FitOptions o,
+                              const std::string& group_by) {
+  if (o.report.empty()) o.report = ".";
+  std::vector<cli::BatchRun> runs;
+  {
+    py::gil_scoped_release release;
+    (void)cli::fit_settings_from_options(o, o.model);
+    runs = cli::plan_batch_runs(inputs, o, group_by, "");
+  }
+  std::vector<std::string> out;
+  for (const auto& run : runs) out.push_back(run_json(run));
+  return out;
+}
+
+// A run over rows held in memory (a DataFrame's group): the same JSON, without a file.
+std::string table_run(const std::string& label, cli::FitOptions o,
+                      const std::vector<std::pair<std::string, std::string>>& covariates) {
+  if (o.report.empty()) o.report = ".";
+  (void)cli::fit_settings_from_options(o, o.model);
+  cli::BatchRun run;
+  run.label = label;
+  run.options = o;
+  for (const auto& [name, value] : covariates) {
+    cli::check_covariate_name(name, "group_by");
+    run.covariates.push_back({name, value});
+  }
+  return run_json(run);
+}
+
+// Fits one run: its file (read here, on the worker) or `data` (a DataFrame's group). Returns its
+// summary row as JSON and, with `report`, report.json's text as `frictionid batch` writes it.
+std::pair<std::string, std::optional<std::string>> fit_run(
+    const std::string& run_text, int threads, bool report,
+    const std::optional<std::shared_ptr<Dataset>>& data) {
+  cli::BatchRun run = run_from_json(run_text);
+  if (data) {
+    run.file_data = *data;
+    run.group_rows.resize((*data)->rows());
+    std::iota(run.group_rows.begin(), run.group_rows.end(), std::size_t{0});
+  }
+  std::optional<std::string> report_text;
+  SummaryRow row;
+  {
+    py::gil_scoped_release release;
+    row = cli::fit_batch_run(run, threads, nullptr, [&](const FitResult& r, const Dataset&) {
+      if (report) report_text = dump(report_json(r), 2) + "\n";
+    });
+  }
+  return {dump(summary_row_json(row)), report_text};
+}
+
+// The failed row of a run whose rows could not be made (a DataFrame group the reader rejects).
+std::string failed_run(const std::string& run_text, const std::string& error) {
+  const cli::BatchRun run = run_from_json(run_text);
+  return dump(summary_row_json(failed_summary_row(run.label, 0, error, run.covariates)));
+}
+
+// summary.csv and summary.json's text from the rows' JSON, sorted by label as the batch sorts.
+std::pair<std::string, std::string> summary_files(const std::vector<std::string>& row_texts) {
+  std::vector<SummaryRow> rows;
+  for (const auto& text : row_texts) rows.push_back(summary_row_from_json(ojson::parse(text)));
+  std::stable_sort(rows.begin(), rows.end(),
+                   [](const SummaryRow& a, const SummaryRow& b) { return a.label < b.label; });
+  return {summary_csv(rows), dump(summary_json(rows), 2) + "\n"};
+}
+
+}  // namespace
+
+void register_batch(py::module_& m) {
+  m.def("plan_batch_runs", &plan, py::arg("inputs"), py::arg("options"), py::arg("group_by"));
+  m.def("table_run", &table_run, py::arg("label"), py::arg("options"), py::arg("covariates"));
+  m.def("fit_batch_run", &fit_run, py::arg("run"), py::arg("threads"), py::arg("report"),
+        py::arg("data") = std::nullopt);
+  m.def("failed_batch_run", &failed_run, py::arg("run"), py::arg("error"));
+  m.def("summary_files", &summary_files, py::arg("rows"));
+  m.def(
+      "write_file_atomically",
+      [](const std::string& path, const std::string& content) {
+        py::gil_scoped_release release;
+        write_file_atomically(path, content);
+      },
+      py::arg("path"), py::arg("content"));
+}
+
+}  // namespace frictionid::python
