@@ -26,8 +26,9 @@ constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", 
                                     "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
 // More series than this are drawn as one: a legend of dozens of colours tells nothing apart.
 constexpr std::size_t kMaxSeries = 10;
-// Error bars reach at most this many times the spread of the values beyond them, so that one
-// undetermined parameter (a huge stderr) does not flatten the trend of all the others.
+// Error bars reach at most this many times the spread of the values (or the median bar, if
+// larger) beyond them, so that one undetermined parameter (a huge stderr) does not flatten the
+// trend of all the others.
 constexpr double kMaxBarReach = 3.0;
 
 // Style and sorting for the runs table. Missing values sort last in both directions, numbers
@@ -204,14 +205,26 @@ void runs_section(std::string& h, const std::vector<SummaryRow>& rows,
        "COL, e.g. #sort=mean_N. A label links to the run's report where one was written.</p>");
 }
 
-// Failed runs and warnings, by run, in plain words.
+// Failed runs with their errors, and the warnings in plain words, each once with the runs that
+// have it (a campaign's runs often share most of theirs). A long list starts folded.
 void problems_section(std::string& h, const std::vector<SummaryRow>& rows) {
-  std::vector<std::string> failed, warned;
+  std::vector<std::string> failed, warnings;
+  std::vector<std::vector<std::string>> warned_runs;
+  std::size_t runs_with_warnings = 0;
   for (const auto& row : rows) {
     if (!row.ok) failed.push_back(escape(row.label) + ": " + escape(row.error));
-    for (const auto& w : row.warnings) warned.push_back(escape(row.label) + ": " + escape(w));
+    if (!row.warnings.empty()) ++runs_with_warnings;
+    for (const auto& w : row.warnings) {
+      const auto it = std::find(warnings.begin(), warnings.end(), w);
+      if (it == warnings.end()) {
+        warnings.push_back(w);
+        warned_runs.push_back({escape(row.label)});
+      } else {
+        warned_runs[static_cast<std::size_t>(it - warnings.begin())].push_back(escape(row.label));
+      }
+    }
   }
-  if (failed.empty() && warned.empty()) {
+  if (failed.empty() && warnings.empty()) {
     line(h, "<p class=\"ok\" id=\"warnings\">Every run was fitted without a warning.</p>");
     return;
   }
@@ -221,10 +234,16 @@ void problems_section(std::string& h, const std::vector<SummaryRow>& rows) {
     for (const auto& f : failed) line(h, "<li>" + f + "</li>");
     line(h, "</ul>");
   }
-  if (!warned.empty()) {
-    line(h, "<h2>Warnings</h2><ul>");
-    for (const auto& w : warned) line(h, "<li>" + w + "</li>");
-    line(h, "</ul>");
+  if (!warnings.empty()) {
+    line(h, fmt::format("<details{}><summary><strong>Warnings</strong>: {} different, in {} of {} "
+                        "runs</summary><ul>",
+                        warnings.size() <= 5 ? " open" : "", warnings.size(), runs_with_warnings,
+                        rows.size()));
+    for (std::size_t k = 0; k < warnings.size(); ++k)
+      line(h, fmt::format("<li>{} <em>({})</em></li>", escape(warnings[k]),
+                          warned_runs[k].size() == rows.size() ? std::string("every run")
+                                                               : join(warned_runs[k], ", ")));
+    line(h, "</ul></details>");
   }
   line(h, "</div>");
 }
@@ -335,20 +354,52 @@ std::optional<std::pair<double, double>> bar(const SummaryParameter& p) {
   return std::nullopt;
 }
 
-// One parameter's trend plot, or an empty string when no plotted run has the parameter.
+// Where the error bars are cut: kMaxBarReach times the larger of the values' spread and the
+// median half-width of the bars beyond the values. A bar of typical size is never cut; one
+// hundreds of times wider than the rest (an undetermined parameter) is.
+std::pair<double, double> bar_limits(const std::vector<const SummaryParameter*>& values) {
+  double lo = INFINITY, hi = -INFINITY;
+  std::vector<double> half_widths;
+  for (const SummaryParameter* p : values) {
+    if (!p) continue;
+    lo = std::min(lo, p->value), hi = std::max(hi, p->value);
+    if (const auto b = bar(*p)) half_widths.push_back((b->second - b->first) / 2);
+  }
+  double reach = hi - lo;
+  if (!half_widths.empty()) {
+    auto middle = half_widths.begin() + static_cast<std::ptrdiff_t>(half_widths.size() / 2);
+    std::nth_element(half_widths.begin(), middle, half_widths.end());
+    reach = std::max(reach, *middle);
+  }
+  if (!(reach > 0)) reach = std::max(std::abs(lo), 1e-300);
+  return {lo - kMaxBarReach * reach, hi + kMaxBarReach * reach};
+}
+
+// A straight segment of a Mark::Line series; the NaN lifts the pen before the next one.
+void segment(svg::Series& s, double x0, double y0, double x1, double y1) {
+  s.x.insert(s.x.end(), {x0, x1, NAN});
+  s.y.insert(s.y.end(), {y0, y1, NAN});
+}
+
+// One parameter's trend plot, or an empty string when no plotted run has the parameter. Each run
+// is a dot with a short horizontal tick at its value and a capped vertical bar (no cap at a cut
+// end); series are shifted sideways a little so that runs at the same x do not hide each other.
 std::string trend_figure(const Trends& t, const std::string& param, const std::string& x) {
   std::vector<const SummaryParameter*> values;
-  double lo = INFINITY, hi = -INFINITY;
+  double x_lo = INFINITY, x_hi = -INFINITY;
   for (const auto& r : t.runs) {
     const SummaryParameter* p = find_parameter(*r.row, param);
     values.push_back(p && std::isfinite(p->value) ? p : nullptr);
-    if (values.back()) lo = std::min(lo, p->value), hi = std::max(hi, p->value);
+    if (values.back()) x_lo = std::min(x_lo, r.x), x_hi = std::max(x_hi, r.x);
   }
-  if (!(lo <= hi)) return "";
-  const double spread = hi > lo ? hi - lo : std::max(std::abs(lo), 1e-300);
-  const double floor = lo - kMaxBarReach * spread, ceiling = hi + kMaxBarReach * spread;
-
+  if (!(x_lo <= x_hi)) return "";
+  const auto [floor, ceiling] = bar_limits(values);
+  const double x_span = x_hi > x_lo ? x_hi - x_lo : std::max(std::abs(x_lo), 1.0) * 0.2;
+  const double cap = 0.01 * x_span;
   const std::size_t n_series = t.series_labels.size();
+  const double shift =
+      n_series > 1 ? std::min(2.5 * cap, 0.1 * x_span / static_cast<double>(n_series - 1)) : 0.0;
+
   std::vector<svg::Series> dots(n_series), bars(n_series);
   std::size_t clipped = 0;
   for (std::size_t s = 0; s < n_series; ++s) {
@@ -360,33 +411,39 @@ std::string trend_figure(const Trends& t, const std::string& param, const std::s
     const SummaryParameter* p = values[i];
     if (!p) continue;
     const std::size_t s = t.runs[i].series;
-    dots[s].x.push_back(t.runs[i].x);
+    const double xc =
+        t.runs[i].x + shift * (static_cast<double>(s) - static_cast<double>(n_series - 1) / 2);
+    dots[s].x.push_back(xc);
     dots[s].y.push_back(p->value);
-    if (const auto b = bar(*p)) {
-      if (b->first < floor || b->second > ceiling) ++clipped;
-      // A vertical segment; the NaN lifts the pen before the next one.
-      bars[s].x.insert(bars[s].x.end(), {t.runs[i].x, t.runs[i].x, NAN});
-      bars[s].y.insert(bars[s].y.end(),
-                       {std::max(b->first, floor), std::min(b->second, ceiling), NAN});
-    }
+    segment(bars[s], xc - 1.5 * cap, p->value, xc + 1.5 * cap, p->value);
+    const auto b = bar(*p);
+    if (!b) continue;
+    const double lo = std::max(b->first, floor), hi = std::min(b->second, ceiling);
+    if (lo != b->first || hi != b->second) ++clipped;
+    segment(bars[s], xc, lo, xc, hi);
+    if (lo == b->first) segment(bars[s], xc - cap, lo, xc + cap, lo);
+    if (hi == b->second) segment(bars[s], xc - cap, hi, xc + cap, hi);
   }
   svg::Plot plot;
   plot.title = param + " against " + x;
   plot.x_label = x;
   plot.y_label = param;
   if (clipped > 0)
-    plot.notes.push_back(fmt::format("error bars of {} run{} cut at {} × the spread of the values",
-                                     clipped, clipped == 1 ? "" : "s", kMaxBarReach));
+    plot.notes.push_back(fmt::format("error bars of {} run{} cut (no cap at the cut end)", clipped,
+                                     clipped == 1 ? "" : "s"));
   for (auto& s : bars) plot.series.push_back(std::move(s));
   for (auto& s : dots) plot.series.push_back(std::move(s));
-  const std::string caption = fmt::format(
+  std::string caption = fmt::format(
       "{} of each successful run against its {}, with the 95 % interval (ci95, or ±1.96 stderr "
-      "where the run has no interval) as an error bar{}.",
-      escape(param), escape(x),
-      t.grouping.empty() ? std::string()
-                         : "; one colour per value of " + escape(join(t.grouping, ", ")));
+      "where the run has no interval) as an error bar",
+      escape(param), escape(x));
+  if (!t.grouping.empty())
+    caption += fmt::format(
+        "; one colour per value of {}, each colour shifted sideways by {} from the next so that "
+        "runs at the same {} stay apart",
+        escape(join(t.grouping, ", ")), svg::tick_label(shift), escape(x));
   return fmt::format(
-      "<figure class=\"plot\" data-param=\"{}\">\n{}\n<figcaption>{}</figcaption>"
+      "<figure class=\"plot\" data-param=\"{}\">\n{}\n<figcaption>{}.</figcaption>"
       "\n</figure>",
       escape(param), svg::render(plot), caption);
 }

@@ -291,7 +291,7 @@ TEST(Batch, SummariesDoNotDependOnTheNumberOfJobs) {
                             d / ("out" + std::string(jobs)));
     EXPECT_EQ(b.code, 4) << b.out;
   }
-  for (const char* file : {"summary.csv", "summary.json"})
+  for (const char* file : {"summary.csv", "summary.json", "summary.html"})
     EXPECT_EQ(read_file(d / ("out1/" + std::string(file))),
               read_file(d / ("out2/" + std::string(file))))
         << file;

@@ -64,6 +64,14 @@ std::string trends(const std::string& page) {
   return at == std::string::npos ? std::string() : page.substr(at);
 }
 
+// The trend figures of a page, each as its text.
+std::vector<std::string> figures(const std::string& page) {
+  std::vector<std::string> out;
+  for (auto at = page.find("<figure"); at != std::string::npos; at = page.find("<figure", at + 1))
+    out.push_back(page.substr(at, page.find("</figure>", at) - at));
+  return out;
+}
+
 // The exact value in the data-value attribute that follows `attribute` in row `label`.
 std::optional<double> cell_value(const std::string& page, const std::string& label,
                                  const std::string& attribute) {
@@ -105,13 +113,9 @@ TEST(SummaryHtml, FailedRunsAreMarkedWithTheirErrorAndLeftOutOfThePlots) {
   const std::string t = trends(page);
   EXPECT_NE(t.find("Failed runs are left out: d."), std::string::npos);
   // Three runs plotted per parameter: each dot is an "h0" subpath of the dot path.
-  std::size_t figures = 0;
-  for (auto at = t.find("<figure"); at != std::string::npos; at = t.find("<figure", at + 1)) {
-    const std::string figure = t.substr(at, t.find("</figure>", at) - at);
-    EXPECT_EQ(count(figure, "h0"), 3u) << figure;
-    ++figures;
-  }
-  EXPECT_EQ(figures, 2u);  // kappa and f
+  const auto figs = figures(t);
+  EXPECT_EQ(figs.size(), 2u);  // kappa and f
+  for (const auto& figure : figs) EXPECT_EQ(count(figure, "h0"), 3u) << figure;
 }
 
 TEST(SummaryHtml, OneSeriesPerValueOfTheOtherTextCovariates) {
@@ -122,18 +126,59 @@ TEST(SummaryHtml, OneSeriesPerValueOfTheOtherTextCovariates) {
   EXPECT_EQ(t.find("load="), std::string::npos);
 }
 
-TEST(SummaryHtml, ErrorBarsSpanTheIntervalOrOnePointNineSixStderr) {
-  // One run, so the plot's pixel scale is fixed by the bar alone: check the bar is drawn at all
-  // for both kinds (ci95 for kappa, 1.96 stderr for f) as a vertical line.
-  const std::string t = trends(summary_html({ok_run("a", 1000.0, "dry", 0.3, 0.7)}, {}));
-  const std::regex vertical("d=\"M([0-9.]+) ([0-9.]+)L([0-9.]+) ([0-9.]+)\"");
-  std::size_t bars = 0;
-  for (std::sregex_iterator it(t.begin(), t.end(), vertical), end; it != end; ++it) {
-    EXPECT_EQ((*it)[1], (*it)[3]);
-    EXPECT_NE((*it)[2], (*it)[4]);
-    ++bars;
+struct Segment {
+  double x0, y0, x1, y1;
+};
+
+// The straight segments of a figure's error bars (its Mark::Line paths), in SVG pixels.
+std::vector<Segment> bar_segments(const std::string& figure) {
+  std::vector<Segment> out;
+  const std::regex path("stroke-width=\"1.8\" stroke-linejoin=\"round\" d=\"([^\"]*)\"");
+  const std::regex move("M([-0-9.]+) ([-0-9.]+)L([-0-9.]+) ([-0-9.]+)");
+  for (std::sregex_iterator p(figure.begin(), figure.end(), path), end; p != end; ++p) {
+    const std::string d = (*p)[1];
+    for (std::sregex_iterator m(d.begin(), d.end(), move); m != end; ++m)
+      out.push_back(
+          {std::stod((*m)[1]), std::stod((*m)[2]), std::stod((*m)[3]), std::stod((*m)[4])});
   }
-  EXPECT_EQ(bars, 2u);
+  return out;
+}
+
+TEST(SummaryHtml, EachRunIsACappedErrorBarWithATickAtItsValue) {
+  // kappa has a ci95, f only a stderr: both get a bar.
+  const auto page = summary_html({ok_run("a", 1000.0, "dry", 0.3, 0.7)}, {});
+  const auto figs = figures(page);
+  ASSERT_EQ(figs.size(), 2u);
+  for (const auto& figure : figs) {
+    const auto segments = bar_segments(figure);
+    ASSERT_EQ(segments.size(), 4u) << figure;  // value tick, bar, two caps
+    const Segment& tick = segments[0];
+    const Segment& bar = segments[1];
+    EXPECT_EQ(tick.y0, tick.y1);
+    EXPECT_EQ(bar.x0, bar.x1);
+    EXPECT_GT(std::abs(bar.y1 - bar.y0), 10.0);  // a visible bar
+    EXPECT_LT(std::min(bar.y0, bar.y1), tick.y0);
+    EXPECT_GT(std::max(bar.y0, bar.y1), tick.y0);
+    for (const Segment& c : {segments[2], segments[3]}) {
+      EXPECT_EQ(c.y0, c.y1);
+      EXPECT_TRUE(c.y0 == bar.y0 || c.y0 == bar.y1);
+      EXPECT_LT(c.x0, bar.x0);
+      EXPECT_GT(c.x1, bar.x0);
+    }
+  }
+}
+
+TEST(SummaryHtml, AHugeErrorBarIsCutWithoutCapsAndSaysSo) {
+  auto rows = campaign();
+  rows[1].parameters[1].std_error = 1e6;  // f of run b: undetermined
+  const auto figs = figures(summary_html(rows, {}));
+  ASSERT_EQ(figs.size(), 2u);
+  const std::string& f = figs[0];  // canonical order: f, then kappa
+  ASSERT_NE(f.find("f against mean_N"), std::string::npos);
+  EXPECT_NE(f.find("error bars of 1 run cut"), std::string::npos);
+  // Three ticks and three bars; caps only on the two runs whose bars were not cut.
+  EXPECT_EQ(bar_segments(f).size(), 3u + 3u + 4u);
+  EXPECT_EQ(figs[1].find(" cut"), std::string::npos);  // kappa's bars are all whole
 }
 
 TEST(SummaryHtml, TheSortingScriptAndSortKeysArePresent) {
