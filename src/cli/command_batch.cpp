@@ -16,6 +16,7 @@
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/report_writer.hpp>
+#include <frictionid/io/summary_html.hpp>
 #include <frictionid/io/summary_table.hpp>
 #include "cli/batch_fit_run.hpp"
 #include "cli/batch_journal.hpp"
@@ -74,6 +75,29 @@ std::string duration_text(double s) {
   return buf;
 }
 
+// --trend-x names a covariate every run has or one of the runs' manifest or group-by columns;
+// these are known before any fit, so a typo stops the batch with exit code 2.
+void check_trend_x(const std::string& name, const std::vector<BatchRun>& runs) {
+  std::vector<std::string> known = dataset_covariate_names();
+  for (const auto& run : runs)
+    for (const auto& c : run.covariates)
+      if (std::find(known.begin(), known.end(), c.name) == known.end()) known.push_back(c.name);
+  if (std::find(known.begin(), known.end(), name) != known.end()) return;
+  std::string list;
+  for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+  throw InputError("--trend-x: no covariate '" + name + "'; the covariates are: " + list);
+}
+
+SummaryHtmlOptions summary_page_options(const BatchOptions& o, const std::vector<BatchRun>& runs) {
+  SummaryHtmlOptions h;
+  h.trend_x = o.trend_x;
+  h.run_reports = o.per_run_reports == "full"   ? RunReports::Full
+                  : o.per_run_reports == "json" ? RunReports::Json
+                                                : RunReports::None;
+  for (const auto& run : runs) h.run_directories[run.label] = run.directory;
+  return h;
+}
+
 }  // namespace
 
 int run_batch(const BatchOptions& o) {
@@ -91,6 +115,7 @@ int run_batch(const BatchOptions& o) {
   const std::vector<BatchRun> runs =
       plan_batch_runs(o.inputs, o.fit, o.group_by, "reports=" + o.per_run_reports);
   check_shared_parameters(runs, shared);
+  check_trend_x(o.trend_x, runs);
   fs::create_directories(o.fit.report);
   BatchJournal journal((fs::path(o.fit.report) / "journal.jsonl").string(), o.force);
 
@@ -174,16 +199,21 @@ int run_batch(const BatchOptions& o) {
     table.push_back(std::move(*row));
   }
   const fs::path dir(o.fit.report);
-  write_file_atomically((dir / "summary.csv").string(), summary_csv(table));
-  write_file_atomically(
-      (dir / "summary.json").string(),
+  // All three are made before any is written, so a failure cannot leave them out of step.
+  const std::string csv = summary_csv(table);
+  const std::string json =
       summary_json(table).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) +
-          "\n");
+      "\n";
+  const std::string page = summary_html(table, summary_page_options(o, runs));
+  write_file_atomically((dir / "summary.csv").string(), csv);
+  write_file_atomically((dir / "summary.json").string(), json);
+  write_file_atomically((dir / "summary.html").string(), page);
   std::printf(
       "batch: %zu runs: %zu fitted, %zu from the journal, %zu failed; %.2f s, %zu at once\n",
       runs.size(), fitted, from_journal, failed_total,
       seconds(std::chrono::steady_clock::now() - t_start).count(), jobs);
-  std::printf("summary: %s/summary.csv\n", o.fit.report.c_str());
+  std::printf("summary: %s/summary.csv, %s/summary.html\n", o.fit.report.c_str(),
+              o.fit.report.c_str());
   if (!shared.empty()) {
     try {
       write_shared_fit(runs, table, shared, o.fit.threads, interrupted, o.fit.report);

@@ -82,6 +82,7 @@ struct BatchOptions {
   bool force = false;                    // fit every run again, whatever the journal holds
   int jobs = 0;                          // runs fitted at once; 0: every hardware thread
   std::string shared;                    // P[,P]: parameters common to every run (joint fit)
+  std::string trend_x = "mean_N";        // the covariate on summary.html's trend plots' x axis
 };
 int run_batch(const BatchOptions& o);
 

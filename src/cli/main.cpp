@@ -183,7 +183,7 @@ void add_batch(CLI::App& app, BatchOptions& o) {
   auto* c = app.add_subcommand(
       "batch",
       "Fit many runs (files, a directory, a manifest or groups of one CSV) into one "
-      "summary table: DIR/summary.csv and DIR/summary.json");
+      "summary table: DIR/summary.csv, DIR/summary.json and DIR/summary.html");
   c->add_option("inputs", o.inputs,
                 "CSV files, globs, directories (their *.csv) or manifest CSVs (a `path` column)")
       ->required();
@@ -201,6 +201,10 @@ void add_batch(CLI::App& app, BatchOptions& o) {
   c->add_option("--shared", o.shared,
                 "P[,P]: after the runs' own fits, one joint fit in which these parameters are "
                 "common to every run (DIR/shared.csv, DIR/shared.json), e.g. kappa,h");
+  c->add_option("--trend-x", o.trend_x,
+                "the covariate on the x axis of summary.html's trend plots (mean_N, mean_speed, "
+                "mean_omega_R, a manifest or --group-by column)")
+      ->capture_default_str();
 }
 
 void add_simulate(CLI::App& app, SimulateOptions& o) {

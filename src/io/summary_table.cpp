@@ -63,7 +63,12 @@ std::vector<Covariate> dataset_covariates(const Dataset& d) {
     spin += std::abs(d.omega[i]) * d.R[i];
   }
   const double rows = static_cast<double>(n);
-  return {{"mean_N", N / rows}, {"mean_speed", speed / rows}, {"mean_omega_R", spin / rows}};
+  const auto names = dataset_covariate_names();
+  return {{names[0], N / rows}, {names[1], speed / rows}, {names[2], spin / rows}};
+}
+
+std::vector<std::string> dataset_covariate_names() {
+  return {"mean_N", "mean_speed", "mean_omega_R"};
 }
 
 SummaryRow summary_row(const std::string& label, const FitResult& r,

@@ -223,6 +223,47 @@ TEST(Batch, GroupByANumericColumnLabelsRunsByItsValue) {
   EXPECT_TRUE(fs::exists(d / "out/runs/2000/report.json"));
 }
 
+TEST(Batch, WritesSummaryHtmlWithEveryRunLinksToReportsAndTrendPlots) {
+  const ScratchDir d("html");
+  make_runs(d, 2);
+  std::ofstream(d / "in/broken.csv") << "v_x,omega,N,R,T_x\n0.1,2,1000,0.05,abc\n";
+  const RunResult b = run("batch " + d / "in" + " --per-run-reports full --report " + d / "out");
+  EXPECT_EQ(b.code, 4) << b.out;
+  const std::string page = read_file(d / "out/summary.html");
+  for (const char* label : {"run1", "run2", "broken"})
+    EXPECT_NE(page.find("data-label=\"" + std::string(label) + "\""), std::string::npos) << label;
+  EXPECT_NE(page.find("<a href=\"runs/run1/report.html\">run1</a>"), std::string::npos);
+  EXPECT_TRUE(fs::exists(d / "out/runs/run1/report.html"));
+  EXPECT_EQ(page.find("href=\"runs/broken/"), std::string::npos);
+  EXPECT_NE(page.find("data-label=\"broken\" class=\"failed\""), std::string::npos);
+  EXPECT_NE(page.find("f against mean_N"), std::string::npos);
+  EXPECT_EQ(page.find("nan"), std::string::npos);
+  // The page holds summary.csv's numbers: every run's f, exactly.
+  const Table t = read_summary(d / "out/summary.csv");
+  const std::string f_cell = "data-param=\"f\" data-value=\"";
+  for (const char* label : {"run1", "run2"}) {
+    const auto row = page.find("data-label=\"" + std::string(label) + "\"");
+    const auto cell = page.find(f_cell, row);
+    ASSERT_NE(cell, std::string::npos) << label;
+    EXPECT_EQ(std::strtod(page.c_str() + cell + f_cell.size(), nullptr),
+              number(t.at(label).at("f")))
+        << label;
+  }
+}
+
+TEST(Batch, TrendXTakesAGroupByColumn) {
+  const ScratchDir d("trend_x");
+  ASSERT_EQ(
+      run("generate --model seed --rows 300 --loads 1000,2000,3000 --output " + d / "rig.csv").code,
+      0);
+  const RunResult b =
+      run("batch " + d / "rig.csv" + " --group-by N --trend-x N --report " + d / "out");
+  ASSERT_EQ(b.code, 0) << b.out;
+  const std::string page = read_file(d / "out/summary.html");
+  EXPECT_NE(page.find("kappa against N"), std::string::npos);
+  EXPECT_EQ(page.find("Left out"), std::string::npos);
+}
+
 TEST(Batch, AFailedRunIsARowAndExitCodeFourWhileTheOthersSucceed) {
   const ScratchDir d("failed");
   make_runs(d, 2);
@@ -250,7 +291,7 @@ TEST(Batch, SummariesDoNotDependOnTheNumberOfJobs) {
                             d / ("out" + std::string(jobs)));
     EXPECT_EQ(b.code, 4) << b.out;
   }
-  for (const char* file : {"summary.csv", "summary.json"})
+  for (const char* file : {"summary.csv", "summary.json", "summary.html"})
     EXPECT_EQ(read_file(d / ("out1/" + std::string(file))),
               read_file(d / ("out2/" + std::string(file))))
         << file;
@@ -442,6 +483,9 @@ TEST(Batch, BadInputsExitWithCodeTwoAndSayWhatIsWrong) {
       {"batch " + d / "in/run1.csv" + " --group-by load_case", "--group-by: no column 'load_case'"},
       {"batch " + d / "in" + " --per-run-reports some", "per-run-reports"},
       {"batch " + d / "clash.csv", "column 'cost' would clash"},
+      {"batch " + d / "in" + " --trend-x load",
+       "--trend-x: no covariate 'load'; the covariates "
+       "are: mean_N, mean_speed, mean_omega_R"},
   };
   for (const auto& [args, message] : cases) {
     const RunResult r = run(args + " --report " + d / "out");

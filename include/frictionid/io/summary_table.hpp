@@ -61,6 +61,8 @@ struct SummaryRow {
 // The covariates every run has: mean_N, mean_speed (mean of sqrt(v_x^2 + v_y^2)) and
 // mean_omega_R (mean of |omega| R). Empty for a dataset without rows.
 std::vector<Covariate> dataset_covariates(const Dataset& d);
+// Their names, in that order.
+std::vector<std::string> dataset_covariate_names();
 
 SummaryRow summary_row(const std::string& label, const FitResult& r,
                        std::vector<Covariate> covariates);
