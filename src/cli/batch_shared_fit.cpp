@@ -79,7 +79,8 @@ void check_shared_parameters(const std::vector<BatchRun>& runs,
 
 void write_shared_fit(const std::vector<BatchRun>& runs, const std::vector<SummaryRow>& table,
                       const std::vector<std::string>& shared, int threads,
-                      const std::atomic<bool>* interrupted, const std::string& dir) {
+                      const std::atomic<bool>* interrupted, const std::string& dir,
+                      SummaryHtmlOptions page) {
   std::vector<std::unique_ptr<Dataset>> data;
   std::vector<JointRunInput> inputs;
   std::vector<std::size_t> index;  // inputs[k] is runs[index[k]]
@@ -127,11 +128,30 @@ void write_shared_fit(const std::vector<BatchRun>& runs, const std::vector<Summa
                  {"termination", joint.termination},
                  {"linear_solver", joint.linear_solver}};
   j["table"] = summary_json(rows);
+  page.title = "frictionid batch: joint fit";
+  page.note = "One joint fit of " + std::to_string(joint.runs.size()) + " runs in which";
+  for (std::size_t k = 0; k < joint.shared.size(); ++k) {
+    const ParameterEstimate& e = joint.shared[k];
+    char value[96];
+    std::snprintf(value, sizeof value, " %s = %.10g", e.name.c_str(), e.value);
+    page.note += (k > 0 ? "," : "") + std::string(value);
+    if (e.std_error) {
+      std::snprintf(value, sizeof value, " ± %.3g", *e.std_error);
+      page.note += value;
+    }
+  }
+  page.note +=
+      " are common to every run; every other parameter is the run's own, at the joint "
+      "optimum, with standard errors from the joint covariance. summary.html shows the "
+      "runs' own fits.";
+  const std::string csv = summary_csv(rows);
+  const std::string json =
+      j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+  const std::string html = summary_html(rows, page);
   const fs::path d(dir);
-  write_file_atomically((d / "shared.csv").string(), summary_csv(rows));
-  write_file_atomically(
-      (d / "shared.json").string(),
-      j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n");
+  write_file_atomically((d / "shared.csv").string(), csv);
+  write_file_atomically((d / "shared.json").string(), json);
+  write_file_atomically((d / "shared.html").string(), html);
   std::printf("shared: %zu runs share", joint.runs.size());
   for (const auto& e : joint.shared) {
     std::printf(" %s = %.10g", e.name.c_str(), e.value);

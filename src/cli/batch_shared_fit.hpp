@@ -1,13 +1,15 @@
 // `frictionid batch --shared P[,P]`: after every run's own fit, one joint fit of the runs that
 // succeeded, in which the named parameters are common to all (joint_fit.hpp). Writes
-// DIR/shared.csv (the summary table's columns, one row per run, at the joint optimum) and
-// DIR/shared.json (the shared parameters, the joint statistics and the same rows).
+// DIR/shared.csv (the summary table's columns, one row per run, at the joint optimum),
+// DIR/shared.json (the shared parameters, the joint statistics and the same rows) and
+// DIR/shared.html (those rows as summary.html shows the runs' own fits).
 #pragma once
 
 #include <atomic>
 #include <string>
 #include <vector>
 
+#include <frictionid/io/summary_html.hpp>
 #include <frictionid/io/summary_table.hpp>
 #include "cli/batch_runs.hpp"
 
@@ -23,10 +25,12 @@ void check_shared_parameters(const std::vector<BatchRun>& runs,
                              const std::vector<std::string>& shared);
 
 // Fits the runs whose row in `table` is ok (the others stay failed rows with their error) and
-// writes the two files atomically. Throws FitError when the joint fit fails, InputError for a
-// shared parameter some run's settings hold fixed or its model does not read.
+// writes the three files atomically; `page` is summary.html's options. Throws FitError when the
+// joint fit fails, InputError for a shared parameter some run's settings hold fixed or its model
+// does not read.
 void write_shared_fit(const std::vector<BatchRun>& runs, const std::vector<SummaryRow>& table,
                       const std::vector<std::string>& shared, int threads,
-                      const std::atomic<bool>* interrupted, const std::string& dir);
+                      const std::atomic<bool>* interrupted, const std::string& dir,
+                      SummaryHtmlOptions page);
 
 }  // namespace frictionid::cli

@@ -204,7 +204,8 @@ int run_batch(const BatchOptions& o) {
   const std::string json =
       summary_json(table).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) +
       "\n";
-  const std::string page = summary_html(table, summary_page_options(o, runs));
+  const SummaryHtmlOptions page_options = summary_page_options(o, runs);
+  const std::string page = summary_html(table, page_options);
   write_file_atomically((dir / "summary.csv").string(), csv);
   write_file_atomically((dir / "summary.json").string(), json);
   write_file_atomically((dir / "summary.html").string(), page);
@@ -216,7 +217,7 @@ int run_batch(const BatchOptions& o) {
               o.fit.report.c_str());
   if (!shared.empty()) {
     try {
-      write_shared_fit(runs, table, shared, o.fit.threads, interrupted, o.fit.report);
+      write_shared_fit(runs, table, shared, o.fit.threads, interrupted, o.fit.report, page_options);
     } catch (const FitError& e) {
       if (interrupted->load()) return kExitInterrupted;
       std::fprintf(stderr, "frictionid: the joint fit (--shared %s) failed: %s\n", o.shared.c_str(),

@@ -479,9 +479,10 @@ std::string summary_html(const std::vector<SummaryRow>& rows, const SummaryHtmlO
   std::size_t failed = 0;
   for (const auto& row : rows)
     if (!row.ok) ++failed;
-  std::string h = html::page_start("frictionid batch summary");
+  std::string h = html::page_start(o.title);
   line(h, std::string("<style>") + kStyle + "</style>");
-  line(h, "<h1>frictionid batch summary</h1>");
+  line(h, "<h1>" + escape(o.title) + "</h1>");
+  if (!o.note.empty()) line(h, "<p id=\"note\">" + escape(o.note) + "</p>");
   line(h, fmt::format("<p class=\"summary\" id=\"counts\" data-runs=\"{0}\" data-failed=\"{1}\">"
                       "{0} run{2}: {3} fitted, {4}{1} failed{5}.</p>",
                       rows.size(), failed, rows.size() == 1 ? "" : "s", rows.size() - failed,

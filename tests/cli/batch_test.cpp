@@ -453,6 +453,10 @@ TEST(Batch, SharedKappaAndHAreOneValueForEveryRunWhileEachRunKeepsItsOwnF) {
   EXPECT_EQ(j["shared"]["kappa"]["value"].get<double>(), number(t.begin()->second.at("kappa")));
   EXPECT_EQ(j["runs_fitted"].get<int>(), 3);
   EXPECT_EQ(j["solver"]["linear_solver"], "DENSE_SCHUR");
+  const std::string page = read_file(fs::path(d / "out") / "shared.html");
+  EXPECT_NE(page.find("<h1>frictionid batch: joint fit</h1>"), std::string::npos);
+  EXPECT_NE(page.find("in which kappa = "), std::string::npos) << "the shared value in the note";
+  EXPECT_EQ(page.find("nan"), std::string::npos);
 }
 
 TEST(Batch, ABadSharedParameterExitsWithCodeTwoNamingItBeforeAnyRunIsFitted) {

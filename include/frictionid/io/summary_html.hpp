@@ -16,6 +16,8 @@ namespace frictionid {
 enum class RunReports { None, Json, Full };
 
 struct SummaryHtmlOptions {
+  std::string title = "frictionid batch summary";  // the page's title and heading
+  std::string note;  // a paragraph under the heading (plain text), e.g. what the rows are
   // The covariate on the x axis of the trend plots. A number, or a text covariate whose values
   // read as numbers (a manifest or group-by column); runs where it is neither are left out of
   // the plots and named on the page.
