@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include <frictionid/fitter.hpp>
@@ -20,15 +21,21 @@ std::uint64_t mix(std::uint64_t z) {
   return z ^ (z >> 31);
 }
 
-// The q-quantile of sorted values by linear interpolation (q in [0, 1]).
-double quantile(const std::vector<double>& sorted, double q) {
-  const double pos = q * static_cast<double>(sorted.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(pos));
-  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
-  return sorted[lo] + (pos - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
-}
-
 }  // namespace
+
+double bootstrap_percentile(const std::vector<double>& sorted, double q) {
+  if (sorted.empty()) throw std::invalid_argument("bootstrap_percentile: no refits");
+  const double n = static_cast<double>(sorted.size());
+  // 1-based position (B + 1) q; snapped to an integer within rounding so that e.g. 200 * 0.975
+  // reads the 195th refit exactly, then clamped to the smallest and largest refit.
+  double pos = (n + 1.0) * q;
+  if (std::abs(pos - std::round(pos)) < 1e-9 * (n + 1.0)) pos = std::round(pos);
+  pos = std::clamp(pos, 1.0, n);
+  const auto lo = static_cast<std::size_t>(std::floor(pos));  // 1-based, 1 <= lo <= B
+  const std::size_t hi = std::min(lo + 1, sorted.size());
+  const double frac = pos - static_cast<double>(lo);
+  return sorted[lo - 1] + frac * (sorted[hi - 1] - sorted[lo - 1]);
+}
 
 int rademacher_sign(unsigned long long seed, int replicate, std::size_t row) {
   const std::uint64_t h = mix(mix(mix(seed) ^ static_cast<std::uint64_t>(replicate)) ^ row);
@@ -80,7 +87,8 @@ void add_bootstrap_intervals(const LocalProblem& lp, const ParamVector& x, int r
     double ss = 0.0;
     for (double t : v) ss += (t - mean) * (t - mean);
     e.std_error_bootstrap = std::sqrt(ss / static_cast<double>(v.size() - 1));
-    e.ci95_bootstrap = std::array<double, 2>{quantile(v, 0.025), quantile(v, 0.975)};
+    e.ci95_bootstrap =
+        std::array<double, 2>{bootstrap_percentile(v, 0.025), bootstrap_percentile(v, 0.975)};
   }
 }
 

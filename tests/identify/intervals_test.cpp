@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include <frictionid/fitter.hpp>
@@ -129,6 +130,41 @@ TEST(BootstrapIntervals, RademacherSignsAreBalancedAndDifferBySeedReplicateAndRo
   }
   EXPECT_LT(std::abs(sum), 4 * std::sqrt(20000.0));
   EXPECT_NEAR(same_seed, 10000, 4 * std::sqrt(5000.0));
+}
+
+// The percentile reads order statistics, not values: with the k-th of B sorted refits equal to
+// k^2 the (B + 1) q-th order statistic is recognisable from its value.
+std::vector<double> squares(int b) {
+  std::vector<double> v;
+  for (int k = 1; k <= b; ++k) v.push_back(static_cast<double>(k) * k);
+  return v;
+}
+
+TEST(BootstrapPercentile, IsThe5thAnd195thOf199Refits) {
+  const std::vector<double> v = squares(199);
+  EXPECT_EQ(bootstrap_percentile(v, 0.025), 5.0 * 5.0);
+  EXPECT_EQ(bootstrap_percentile(v, 0.975), 195.0 * 195.0);
+}
+
+TEST(BootstrapPercentile, InterpolatesBetweenOrderStatisticsWhenBPlus1TimesAlphaIsNotAnInteger) {
+  std::vector<double> ranks(99);
+  for (int k = 1; k <= 99; ++k) ranks[k - 1] = k;
+  EXPECT_DOUBLE_EQ(bootstrap_percentile(ranks, 0.025), 2.5);
+  EXPECT_DOUBLE_EQ(bootstrap_percentile(ranks, 0.975), 97.5);
+  const std::vector<double> v = squares(99);  // halfway between the 2nd and 3rd, 97th and 98th
+  EXPECT_DOUBLE_EQ(bootstrap_percentile(v, 0.025), (4.0 + 9.0) / 2);
+  EXPECT_DOUBLE_EQ(bootstrap_percentile(v, 0.975), (97.0 * 97.0 + 98.0 * 98.0) / 2);
+  EXPECT_EQ(bootstrap_percentile(squares(999), 0.025), 25.0 * 25.0);
+  EXPECT_EQ(bootstrap_percentile(squares(999), 0.975), 975.0 * 975.0);
+}
+
+TEST(BootstrapPercentile, IsClampedToTheSmallestAndLargestRefit) {
+  const std::vector<double> v = squares(19);  // (B + 1) q = 0.5 and 19.5
+  EXPECT_EQ(bootstrap_percentile(v, 0.025), 1.0);
+  EXPECT_EQ(bootstrap_percentile(v, 0.975), 19.0 * 19.0);
+  EXPECT_EQ(bootstrap_percentile({7.0}, 0.025), 7.0);
+  EXPECT_EQ(bootstrap_percentile({7.0}, 0.975), 7.0);
+  EXPECT_THROW(bootstrap_percentile({}, 0.5), std::invalid_argument);
 }
 
 // M_roll = h N R m3/(2 m1) is linear in h: fitting h alone to M_roll is a weighted linear
