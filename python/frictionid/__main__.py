@@ -1,9 +1,9 @@
 """python3 -m frictionid batch INPUTS... --output DIR [--scheduler tcp://HOST:PORT]: the command
 line's ``frictionid batch`` with its fits mapped over a Dask cluster (frictionid.dask).
 
-DIR gets the same summary.csv and summary.json as ``frictionid batch`` writes for the same inputs
-and options, byte for byte, each written atomically, and with ``--per-run-reports json`` (the
-default) runs/<label>/report.json. Exit codes are the command line's (docs/design.md §3.1): 0
+DIR gets the same summary.csv, summary.json and summary.html as ``frictionid batch`` writes for
+the same inputs and options, byte for byte, each written atomically, and with
+``--per-run-reports json`` (the default) runs/<label>/report.json. Exit codes are the command line's (docs/design.md §3.1): 0
 every run fitted, 4 some runs failed (rows with their error), 2 bad input, 1 a cluster or I/O
 failure.
 """
@@ -38,12 +38,12 @@ def batch_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="python3 -m frictionid batch",
         description="Fit many runs on a Dask cluster into frictionid batch's summary table: "
-                    "DIR/summary.csv and DIR/summary.json.")
+                    "DIR/summary.csv, DIR/summary.json and DIR/summary.html.")
     p.add_argument("inputs", nargs="+",
                    help="CSV files, globs, directories (their *.csv) or manifest CSVs "
                         "(a `path` column)")
     p.add_argument("--output", "--report", dest="output", required=True, metavar="DIR",
-                   help="directory for summary.csv, summary.json and runs/")
+                   help="directory for summary.csv, summary.json, summary.html and runs/")
     p.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                    help="an existing Dask scheduler (default: start a LocalCluster)")
     p.add_argument("--timeout", type=float, default=30.0, metavar="SECONDS",
@@ -73,6 +73,8 @@ def batch_parser() -> argparse.ArgumentParser:
                    help="threads per fit on a worker (results do not depend on it)")
     p.add_argument("--group-by", default="", metavar="COL[,COL]",
                    help="split each CSV into one run per value of the columns")
+    p.add_argument("--trend-x", default="mean_N", metavar="COL",
+                   help="covariate on the x axis of summary.html's trend plots")
     p.add_argument("--per-run-reports", default="json", choices=["none", "json"],
                    help="json: DIR/runs/<label>/report.json, as frictionid batch")
     p.add_argument("--retries", type=whole_number(0), default=2,
@@ -94,6 +96,7 @@ def run_batch(args: argparse.Namespace) -> int:
     if os.path.exists(args.output) and not os.path.isdir(args.output):
         raise _frictionid.InputError(f"{args.output}: --output exists and is not a directory")
     runs = fdask.plan(args.inputs, o, args.group_by)
+    _frictionid.check_trend_x([run.spec for run in runs], args.trend_x)
     with_reports = args.per_run_reports == "json"
 
     if args.scheduler:
@@ -116,9 +119,11 @@ def run_batch(args: argparse.Namespace) -> int:
                 os.makedirs(run_dir, exist_ok=True)
                 _frictionid.write_file_atomically(os.path.join(run_dir, "report.json"), report)
     rows = [outcome.rows[run.label] for run in runs]
-    csv_text, json_text = _frictionid.summary_files(rows)
+    csv_text, json_text, html_text = _frictionid.summary_files(
+        rows, args.trend_x, args.per_run_reports, {run.label: run.directory for run in runs})
     _frictionid.write_file_atomically(os.path.join(args.output, "summary.csv"), csv_text)
     _frictionid.write_file_atomically(os.path.join(args.output, "summary.json"), json_text)
+    _frictionid.write_file_atomically(os.path.join(args.output, "summary.html"), html_text)
 
     table = fdask.summary_frame(csv_text)
     failed = table[table["status"] != "ok"]

@@ -112,7 +112,7 @@ def fit_many(
         runs = plan(_input_list(inputs), options, ",".join(group_columns))
     outcome = run_on_cluster(runs, client, threads=threads, with_reports=with_reports,
                              retries=retries, n_workers=n_workers)
-    csv_text, json_text = _frictionid.summary_files(list(outcome.rows.values()))
+    csv_text, json_text, _ = _frictionid.summary_files(list(outcome.rows.values()))
     table = summary_frame(csv_text)
     table.attrs["summary_csv"] = csv_text
     table.attrs["summary_json"] = json_text

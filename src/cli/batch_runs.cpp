@@ -363,4 +363,15 @@ std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, co
   return runs;
 }
 
+void check_trend_x(const std::string& name, const std::vector<BatchRun>& runs) {
+  std::vector<std::string> known = dataset_covariate_names();
+  for (const auto& run : runs)
+    for (const auto& c : run.covariates)
+      if (std::find(known.begin(), known.end(), c.name) == known.end()) known.push_back(c.name);
+  if (std::find(known.begin(), known.end(), name) != known.end()) return;
+  std::string list;
+  for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+  throw InputError("--trend-x: no covariate '" + name + "'; the covariates are: " + list);
+}
+
 }  // namespace frictionid::cli

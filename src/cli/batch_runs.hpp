@@ -38,6 +38,10 @@ std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, co
 // take the name of one of the summary table's own columns.
 void check_covariate_name(const std::string& name, const std::string& where);
 
+// --trend-x names a covariate every run has or one of the runs' manifest or group-by columns;
+// these are known before any fit, so a typo is an InputError (exit 2) listing the covariates.
+void check_trend_x(const std::string& name, const std::vector<BatchRun>& runs);
+
 // The rows `rows` of d, every column (extra ones too) in that order.
 Dataset select_rows(const Dataset& d, const std::vector<std::size_t>& rows);
 

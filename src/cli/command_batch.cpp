@@ -75,19 +75,6 @@ std::string duration_text(double s) {
   return buf;
 }
 
-// --trend-x names a covariate every run has or one of the runs' manifest or group-by columns;
-// these are known before any fit, so a typo stops the batch with exit code 2.
-void check_trend_x(const std::string& name, const std::vector<BatchRun>& runs) {
-  std::vector<std::string> known = dataset_covariate_names();
-  for (const auto& run : runs)
-    for (const auto& c : run.covariates)
-      if (std::find(known.begin(), known.end(), c.name) == known.end()) known.push_back(c.name);
-  if (std::find(known.begin(), known.end(), name) != known.end()) return;
-  std::string list;
-  for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-  throw InputError("--trend-x: no covariate '" + name + "'; the covariates are: " + list);
-}
-
 SummaryHtmlOptions summary_page_options(const BatchOptions& o, const std::vector<BatchRun>& runs) {
   SummaryHtmlOptions h;
   h.trend_x = o.trend_x;

@@ -7,13 +7,16 @@
 // A run travels as JSON text (its label, file, group rows, options and covariates): plain data
 // that Dask pickles cheaply and that holds no loaded rows, which the worker reads itself.
 #include <algorithm>
+#include <map>
 #include <numeric>
+#include <tuple>
 
 #include <pybind11/stl.h>
 #include <nlohmann/json.hpp>
 
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/report_writer.hpp>
+#include <frictionid/io/summary_html.hpp>
 #include <frictionid/io/summary_table.hpp>
 #include "cli/batch_fit_run.hpp"
 #include "cli/batch_runs.hpp"
@@ -172,13 +175,29 @@ std::string failed_run(const std::string& run_text, const std::string& error) {
   return dump(summary_row_json(failed_summary_row(run.label, 0, error, run.covariates)));
 }
 
-// summary.csv and summary.json's text from the rows' JSON, sorted by label as the batch sorts.
-std::pair<std::string, std::string> summary_files(const std::vector<std::string>& row_texts) {
+// summary.csv, summary.json and summary.html's text from the rows' JSON, sorted by label as the
+// batch sorts; the page as `frictionid batch --trend-x X --per-run-reports R` writes it.
+std::tuple<std::string, std::string, std::string> summary_files(
+    const std::vector<std::string>& row_texts, const std::string& trend_x,
+    const std::string& per_run_reports, const std::map<std::string, std::string>& directories) {
   std::vector<SummaryRow> rows;
   for (const auto& text : row_texts) rows.push_back(summary_row_from_json(ojson::parse(text)));
   std::stable_sort(rows.begin(), rows.end(),
                    [](const SummaryRow& a, const SummaryRow& b) { return a.label < b.label; });
-  return {summary_csv(rows), dump(summary_json(rows), 2) + "\n"};
+  SummaryHtmlOptions page;
+  page.trend_x = trend_x;
+  page.run_reports = per_run_reports == "full"   ? RunReports::Full
+                     : per_run_reports == "json" ? RunReports::Json
+                                                 : RunReports::None;
+  page.run_directories = directories;
+  return {summary_csv(rows), dump(summary_json(rows), 2) + "\n", summary_html(rows, page)};
+}
+
+// `frictionid batch --trend-x`'s check, on planned runs: InputError for an unknown covariate.
+void check_trend_x(const std::vector<std::string>& run_texts, const std::string& trend_x) {
+  std::vector<cli::BatchRun> runs;
+  for (const auto& text : run_texts) runs.push_back(run_from_json(text));
+  cli::check_trend_x(trend_x, runs);
 }
 
 }  // namespace
@@ -189,7 +208,10 @@ void register_batch(py::module_& m) {
   m.def("fit_batch_run", &fit_run, py::arg("run"), py::arg("threads"), py::arg("report"),
         py::arg("data") = std::nullopt);
   m.def("failed_batch_run", &failed_run, py::arg("run"), py::arg("error"));
-  m.def("summary_files", &summary_files, py::arg("rows"));
+  m.def("summary_files", &summary_files, py::arg("rows"), py::arg("trend_x") = "mean_N",
+        py::arg("per_run_reports") = "none",
+        py::arg("directories") = std::map<std::string, std::string>{});
+  m.def("check_trend_x", &check_trend_x, py::arg("runs"), py::arg("trend_x"));
   m.def(
       "write_file_atomically",
       [](const std::string& path, const std::string& content) {

@@ -52,12 +52,13 @@ def test_groups_of_one_file_and_a_manifest_give_the_cli_bytes(run_cli, campaign,
             "--noise", 0.01, "--loads", "1000,2000,3000", "--output", loads)
     cases = {"manifest": [manifest], "groups": [loads, "--group-by", "N"]}
     for name, inputs in cases.items():
-        args = [*inputs, *OPTIONS, "--no-global", "--per-run-reports", "none"]
+        args = [*inputs, *OPTIONS, "--no-global", "--per-run-reports", "none", "--trend-x", "N"
+                if name == "groups" else "mean_N"]
         cli = run_cli("batch", *args, "--report", tmp_path / f"cli_{name}")
         dask = python_batch(*args, "--output", tmp_path / f"dask_{name}",
                             "--scheduler", dask_client.scheduler.address)
         assert dask.returncode == 0, dask.stderr
-        for table in ("summary.csv", "summary.json"):
+        for table in ("summary.csv", "summary.json", "summary.html"):
             assert ((tmp_path / f"dask_{name}" / table).read_bytes()
                     == (tmp_path / f"cli_{name}" / table).read_bytes()), (name, cli.stdout)
     # One run per load: the grouping really happened.
@@ -75,6 +76,13 @@ def test_bad_input_exits_2_naming_it_before_any_cluster_is_used(tmp_path):
 
     p = python_batch(tmp_path, "--output", tmp_path / "out", "--model", "nope")
     assert p.returncode == 2 and "--model 'nope'" in p.stderr
+
+    csv = tmp_path / "run.csv"
+    csv.write_text("v_x,omega,N,R,T_x\n0.1,2,1000,0.05,500\n")
+    p = python_batch(csv, "--output", tmp_path / "out", "--trend-x", "Load",
+                     "--scheduler", "tcp://127.0.0.1:9")
+    assert p.returncode == 2 and "--trend-x: no covariate 'Load'" in p.stderr, p.stderr
+    assert not (tmp_path / "out").exists()
 
 
 def test_an_unreachable_scheduler_exits_1(campaign, tmp_path):
