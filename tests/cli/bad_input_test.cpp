@@ -26,10 +26,13 @@
 #include <vector>
 
 #include <frictionid/io/dataset_csv.hpp>
+#include "support/scratch_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+using frictionid::test::read_file;
+using frictionid::test::ScratchDir;
 
 const fs::path kBadDir = fs::path(FRICTIONID_TEST_DATA_DIR) / "bad";
 const fs::path kManifest = kBadDir / "expected.tsv";
@@ -46,13 +49,6 @@ std::string shell_quote(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return q + "'";
-}
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 // Runs FRICTIONID_EXE with `args` in the working directory `cwd`.
@@ -80,27 +76,6 @@ RunResult run(const std::vector<std::string>& args, const fs::path& cwd) {
 }
 
 // A fresh empty directory, removed with everything in it at the end of the scope.
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::string& name)
-      : path_(fs::temp_directory_path() /
-              ("frictionid_bad_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  const fs::path& path() const { return path_; }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  fs::path path_;
-};
-
 // Every file and directory under `dir`, relative to it.
 std::vector<std::string> listing(const fs::path& dir) {
   std::vector<std::string> names;
@@ -325,7 +300,7 @@ TEST(BadInputManifest, HasAValidLineForEveryFileAndAtLeastFortyFiles) {
 TEST(BadInput, MalformedOptionValuesExitWithCodeTwoAndOneLineNamingTheOption) {
   ScratchDir dir("options");
   const std::string data = (kBadDir / "crlf_line_ends.csv").string();
-  const std::string report = (dir / "report").string();
+  const std::string report = (dir / "report");
   const std::vector<std::pair<std::string, std::string>> fit_cases = {
       {"--param", "f=abc"},
       {"--param", "f"},
@@ -416,8 +391,8 @@ TEST(BadInput, ALineLongerThanTheReaderLimitIsRejectedWithItsLineNumber) {
     f << "v_x,omega,N,R,T_x\n0.1,2,2000,0.05,1299\n0.1,2,2000,0.05,";
     f << std::string((1u << 24) + 10, '1') << "\n0.2,2,2000,0.05,1300\n";
   }
-  const RunResult r = run(
-      {"fit", "long.csv", "--model", "seed", "--report", (dir / "report").string()}, dir.path());
+  const RunResult r =
+      run({"fit", "long.csv", "--model", "seed", "--report", (dir / "report")}, dir.path());
   EXPECT_EQ(r.code, 2) << r.err.substr(0, 500);
   EXPECT_NE(r.err.find("long.csv:3: line is longer than"), std::string::npos)
       << r.err.substr(0, 500);
@@ -519,8 +494,8 @@ TEST(BadInputLarge, TenMillionRowsLoadAndABadLastRowIsFound) {
     std::ofstream f(file, std::ios::binary | std::ios::app);
     f << "0.1,2,0,0.05,1\n";
   }
-  const RunResult r = run(
-      {"fit", file.string(), "--model", "seed", "--report", (dir / "report").string()}, dir.path());
+  const RunResult r =
+      run({"fit", file.string(), "--model", "seed", "--report", (dir / "report")}, dir.path());
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("big.csv:10000002:3: column 'N' has '0'"), std::string::npos) << r.err;
   EXPECT_EQ(count_lines(r.err), 1u);
@@ -558,8 +533,8 @@ TEST(BadInput, InterruptedFitExits130WithoutAReport) {
   for (const int sig : {SIGINT, SIGTERM}) {
     ScratchDir dir("interrupt_" + std::to_string(sig));
     const std::string data = (fs::path(FRICTIONID_SOURCE_DIR) / "data/example_hertz.csv").string();
-    const std::string report = (dir / "report").string();
-    const std::string err = (dir / "stderr.txt").string();
+    const std::string report = (dir / "report");
+    const std::string err = (dir / "stderr.txt");
     const pid_t pid = ::fork();
     ASSERT_GE(pid, 0);
     if (pid == 0) {
@@ -639,7 +614,7 @@ TEST(BadInput, EquivalentSpellingsOfOneDatasetGiveByteIdenticalReports) {
     }
     EXPECT_EQ(files, reference_files) << inputs[i][0];
     for (const auto& f : reference_files)
-      EXPECT_TRUE(read_file(dir / out / f) == read_file(dir / "r0" / f))
+      EXPECT_TRUE(read_file(dir.path() / out / f) == read_file(dir.path() / "r0" / f))
           << inputs[i][0] << ": " << f << " differs";
   }
 }

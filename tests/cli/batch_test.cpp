@@ -21,10 +21,13 @@
 #include <string>
 #include <thread>
 #include <vector>
+#include "support/scratch_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+using frictionid::test::read_file;
+using frictionid::test::ScratchDir;
 
 struct RunResult {
   int code;
@@ -42,32 +45,6 @@ RunResult run(const std::string& args) {
   const int status = pclose(p);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::string& name)
-      : path_(fs::temp_directory_path() /
-              ("frictionid_batch_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-  std::string operator/(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
 
 // summary.csv as label -> column -> cell (cells may be double-quoted).
 using Table = std::map<std::string, std::map<std::string, std::string>>;

@@ -14,17 +14,12 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include "support/scratch_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using frictionid::test::read_file;
 
 class OutputTargets : public ::testing::Test {
  protected:

@@ -27,40 +27,16 @@
 #include <string>
 #include <thread>
 #include <vector>
+#include "support/scratch_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+using frictionid::test::read_file;
+using frictionid::test::ScratchDir;
 using Clock = std::chrono::steady_clock;
 
 const fs::path kExample = fs::path(FRICTIONID_SOURCE_DIR) / "data" / "example_hertz.csv";
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::string& name)
-      : path_(fs::temp_directory_path() /
-              ("frictionid_faults_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 // The value of h that run `k` fixes: its marker in report.json and report.md.
 double marker(int k) {

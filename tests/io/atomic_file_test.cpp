@@ -12,36 +12,14 @@
 #include <thread>
 
 #include "io/atomic_file.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using frictionid::write_file_atomically;
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::string& name)
-      : path_(fs::temp_directory_path() /
-              ("frictionid_atomic_" + name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using frictionid::test::read_file;
+using frictionid::test::ScratchDir;
 
 TEST(AtomicFile, AFifoIsWrittenInPlaceAndStaysAFifo) {
   ScratchDir s("fifo");
