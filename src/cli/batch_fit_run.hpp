@@ -18,9 +18,9 @@ namespace frictionid::cli {
 using RunFitted = std::function<void(const FitResult&, const Dataset&)>;
 
 // Reads the run's rows: its group of the loaded file, or its file (then its group_rows of the
-// file when it has them without file_data, as a run planned elsewhere does) and fits them with the run's
-// options on `threads` threads. A failure of any kind (unreadable file, bad data, failed fit) is
-// a failed row carrying the message, never an exception.
+// file when it has them without file_data, as a run planned elsewhere does) and fits them with the
+// run's options on `threads` threads. A failure of any kind (unreadable file, bad data, failed fit)
+// is a failed row carrying the message, never an exception.
 SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer,
                          const RunFitted& on_fitted = {});
 
