@@ -13,6 +13,7 @@
 
 #include "identify/normal_equations.hpp"
 #include "identify/row_chunks.hpp"
+#include "identify/solver_progress.hpp"
 
 namespace frictionid {
 namespace {
@@ -112,26 +113,6 @@ class RunCost final : public ceres::CostFunction {
   int shared_, own_;
 };
 
-class Progress final : public ceres::IterationCallback {
- public:
-  Progress(FitObserver* observer, int max_iterations)
-      : observer_(observer), max_iterations_(max_iterations) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary& it) override {
-    if (!observer_) return ceres::SOLVER_CONTINUE;
-    FitProgress p;
-    p.stage = FitStage::LocalFit;
-    p.done = it.iteration;
-    p.total = max_iterations_;
-    p.cost = it.cost;
-    observer_->on_progress(p);
-    return observer_->cancelled() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
-  }
-
- private:
-  FitObserver* observer_;
-  int max_iterations_;
-};
-
 }  // namespace
 
 JointOutcome joint_local_fit(const JointProblem& p, FitObserver* observer) {
@@ -197,7 +178,8 @@ JointOutcome joint_local_fit(const JointProblem& p, FitObserver* observer) {
   o.num_threads = 1;  // runs are spread over threads by the evaluation callback
   o.logging_type = ceres::SILENT;
   o.minimizer_progress_to_stdout = false;
-  Progress progress(observer, s0.max_iterations);
+  SolverProgress progress(observer, 0, 0, s0.max_iterations);
+  quiet_solver_logging();
   o.callbacks.push_back(&progress);
   ceres::Solver::Summary summary;
   ceres::Solve(o, &problem, &summary);

@@ -1,4 +1,5 @@
-// Ceres adapter of the local stage. The only translation unit that includes ceres.h.
+// Ceres adapter of the local stage; with joint_stage.cpp the only translation units that include
+// ceres.h.
 //
 // All rows go to Ceres as one residual block in normal-equations form (normal_equations.hpp):
 // each Jacobian evaluation runs the autodiff model over fixed chunks of rows on every thread,
@@ -17,7 +18,6 @@
 #include "identify/local_stage.hpp"
 
 #include <ceres/ceres.h>
-#include <glog/logging.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,10 +25,10 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
-#include <mutex>
 
 #include "identify/normal_equations.hpp"
 #include "identify/row_chunks.hpp"
+#include "identify/solver_progress.hpp"
 
 namespace frictionid {
 namespace {
@@ -280,38 +280,6 @@ std::unique_ptr<ceres::CostFunction> make_cost_function(const LocalProblem& p,
   return std::unique_ptr<ceres::CostFunction>(makers[p.free.size() - 1](p, base));
 }
 
-class Callback : public ceres::IterationCallback {
- public:
-  Callback(FitObserver* observer, int start, int starts, int max_iterations)
-      : observer_(observer), start_(start), starts_(starts), max_iterations_(max_iterations) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary& it) override {
-    if (!observer_) return ceres::SOLVER_CONTINUE;
-    FitProgress p;
-    p.stage = FitStage::LocalFit;
-    p.done = it.iteration;
-    p.total = max_iterations_;
-    p.start = start_;
-    p.starts = starts_;
-    p.cost = it.cost;
-    observer_->on_progress(p);
-    return observer_->cancelled() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
-  }
-
- private:
-  FitObserver* observer_;
-  int start_, starts_, max_iterations_;
-};
-
-// Ceres logs through glog. A host that never set glog up would get its warnings ("Error in
-// evaluating the ResidualBlock ...", one per failed step) on stderr, while every failure reaches
-// the caller as a FitError or a warning in words; such a host gets only fatal messages.
-void quiet_solver_logging() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    if (!google::IsGoogleLoggingInitialized()) FLAGS_minloglevel = google::GLOG_FATAL;
-  });
-}
-
 }  // namespace
 
 bool exponent_free(const LocalProblem& p) {
@@ -396,7 +364,7 @@ LocalOutcome local_fit(const LocalProblem& p, const ParamVector& start, FitObser
   o.num_threads = 1;  // rows are spread over threads inside the block (row_chunks.hpp)
   o.logging_type = ceres::SILENT;
   o.minimizer_progress_to_stdout = false;
-  Callback cb(observer, start_index, starts, s.max_iterations);
+  SolverProgress cb(observer, start_index, starts, s.max_iterations);
   quiet_solver_logging();
   o.callbacks.push_back(&cb);
   ceres::Solver::Summary summary;
