@@ -203,6 +203,10 @@ int run_batch(const BatchOptions& o) {
   std::printf("summary: %s/summary.csv, %s/summary.html\n", o.fit.report.c_str(),
               o.fit.report.c_str());
   if (!shared.empty()) {
+    // The joint fit refits every run alone first: on a terminal, say so before the wait.
+    if (progress)
+      std::fprintf(stderr, "frictionid batch: joint fit (--shared %s) of the %zu fitted runs...\n",
+                   o.shared.c_str(), runs.size() - failed_total);
     try {
       write_shared_fit(runs, table, shared, o.fit.threads, interrupted, o.fit.report, page_options);
     } catch (const FitError& e) {
