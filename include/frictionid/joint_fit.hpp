@@ -48,11 +48,15 @@ struct JointFitResult {
   double time_s = 0.0;
 };
 
+// Throws std::invalid_argument when `shared` is empty, names an unknown parameter, or one that
+// the model of `s` does not read or that `s` holds fixed.
+void check_shared_parameters(const FitSettings& s, const std::vector<std::string>& shared);
+
 // Fits every run alone (Fitter), then all runs together: the shared parameters are one value
 // for all runs, every other free parameter is the run's own. The rows keep the whitening of
 // their run's own fit (its noise model or sigma columns), so the joint covariance is absolute.
-// Throws std::invalid_argument when `shared` is empty, names an unknown parameter, or one that
-// some run's model does not read or holds fixed; FitError when a run's own fit or the joint fit
+// Throws std::invalid_argument, before any fit, where check_shared_parameters fails for a run
+// (naming the run); FitError when a run's own fit or the joint fit
 // fails (the message names the run) or the observer cancels.
 JointFitResult fit_joint(const std::vector<JointRunInput>& runs,
                          const std::vector<std::string>& shared, int threads = 0,

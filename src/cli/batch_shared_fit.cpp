@@ -1,6 +1,5 @@
 #include "cli/batch_shared_fit.hpp"
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -43,7 +42,8 @@ SummaryRow joint_row(const JointRunResult& run, const SummaryRow& own) {
 
 }  // namespace
 
-std::vector<std::string> parse_shared_option(const std::string& text) {
+std::vector<std::string> parse_shared_option(const std::string& text,
+                                             const FitSettings& command_line) {
   std::vector<std::string> out;
   std::size_t start = 0;
   for (;;) {
@@ -51,28 +51,27 @@ std::vector<std::string> parse_shared_option(const std::string& text) {
     const std::string name = text.substr(start, comma == std::string::npos ? comma : comma - start);
     if (name.empty())
       throw InputError("--shared: expected P[,P], e.g. kappa,h; got '" + text + "'");
-    if (!param_index(name))
-      throw InputError("--shared: unknown parameter '" + name +
-                       "' (f, kappa, h, a, b, m, n, p0, b_tilde)");
     out.push_back(name);
     if (comma == std::string::npos) break;
     start = comma + 1;
+  }
+  try {
+    check_shared_parameters(command_line, out);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("--shared: ") + e.what());
   }
   return out;
 }
 
 void check_shared_parameters(const std::vector<BatchRun>& runs,
                              const std::vector<std::string>& shared) {
+  if (shared.empty()) return;  // no --shared
   for (const BatchRun& run : runs) {
-    const FitSettings s = fit_settings_from_options(run.options, run.options.model);
-    const std::vector<int> used = model_parameters(s.model, s.law.kind);
-    for (const std::string& name : shared) {
-      const int i = *param_index(name);
-      if (std::find(used.begin(), used.end(), i) == used.end())
-        throw InputError("--shared: run " + run.label + ": " + name +
-                         " is not a parameter of the " + model_name(s.model) + " model");
-      if (s.params[i].fixed)
-        throw InputError("--shared: run " + run.label + ": shared parameter " + name + " is fixed");
+    try {
+      frictionid::check_shared_parameters(fit_settings_from_options(run.options, run.options.model),
+                                          shared);
+    } catch (const std::invalid_argument& e) {
+      throw InputError("--shared: run " + run.label + ": " + e.what());
     }
   }
 }

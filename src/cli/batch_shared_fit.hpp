@@ -9,18 +9,20 @@
 #include <string>
 #include <vector>
 
+#include <frictionid/fit_settings.hpp>
 #include <frictionid/io/summary_html.hpp>
 #include <frictionid/io/summary_table.hpp>
 #include "cli/batch_runs.hpp"
 
 namespace frictionid::cli {
 
-// The parameter names of --shared (comma-separated); throws InputError for an empty or unknown
-// name, before any run is fitted.
-std::vector<std::string> parse_shared_option(const std::string& text);
+// The parameter names of --shared (comma-separated), checked against the command line's own
+// settings (frictionid::check_shared_parameters); throws InputError before any run is fitted.
+std::vector<std::string> parse_shared_option(const std::string& text,
+                                             const FitSettings& command_line);
 
-// Throws InputError naming the run when a shared parameter is fixed in a run's settings or not
-// read by its model: checked before any run is fitted.
+// The same check for every run's settings (a manifest may fix or change the model per run);
+// throws InputError naming the run, before any run is fitted. Nothing to check without --shared.
 void check_shared_parameters(const std::vector<BatchRun>& runs,
                              const std::vector<std::string>& shared);
 

@@ -90,9 +90,10 @@ SummaryHtmlOptions summary_page_options(const BatchOptions& o, const std::vector
 int run_batch(const BatchOptions& o) {
   const auto t_start = std::chrono::steady_clock::now();
   if (o.jobs < 0) throw InputError("--jobs must be 0 (every hardware thread) or more");
-  (void)fit_settings_from_options(o.fit, o.fit.model);  // bad options fail before any work
+  // Bad options fail before any work.
+  const FitSettings command_line = fit_settings_from_options(o.fit, o.fit.model);
   const std::vector<std::string> shared =
-      o.shared.empty() ? std::vector<std::string>{} : parse_shared_option(o.shared);
+      o.shared.empty() ? std::vector<std::string>{} : parse_shared_option(o.shared, command_line);
   const std::atomic<bool>* interrupted = install_interrupt_handler();
   const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait);
   std::error_code ec;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <frictionid/fitter.hpp>
 
@@ -15,40 +16,21 @@ Eigen::Index idx(std::size_t i) {
   return static_cast<Eigen::Index>(i);
 }
 
-// chi² without the loss (cost keeps it).
-double plain_chi2(const LocalProblem& lp, const ParamVector& x) {
-  FitSettings plain_settings = *lp.settings;
-  plain_settings.loss = LossKind::None;
-  LocalProblem plain = lp;
-  plain.settings = &plain_settings;
-  return 2.0 * problem_cost(plain, x);
-}
-
 void add_parameter_estimates(const LocalProblem& lp, const ParamVector& x, const ParamVector& start,
                              const JacobianCovariance& cov, double cov_scale, FitResult& res,
                              std::vector<int>& undetermined) {
   const FitSettings& s = *lp.settings;
   const double tq = res.dof > 0 ? student_t_quantile(0.975, static_cast<double>(res.dof)) : 0.0;
   for (int i : lp.used) {
-    ParameterEstimate e;
-    e.name = param_names()[i];
-    e.value = x[i];
-    e.initial = start[i];
-    e.lower = s.params[i].lower;
-    e.upper = s.params[i].upper;
-    e.fixed = s.params[i].fixed;
-    if (!e.fixed) {
-      e.at_bound = at_bound(x[i], e.lower, e.upper);
+    std::optional<double> var;
+    if (!s.params[i].fixed) {
       const auto j =
           static_cast<std::size_t>(std::find(lp.free.begin(), lp.free.end(), i) - lp.free.begin());
-      const double var = cov.covariance(idx(j), idx(j)) * cov_scale;
-      if (cov.determined[j] && res.dof > 0 && std::isfinite(var) && var >= 0.0) {
-        e.std_error = std::sqrt(var);
-        e.ci95 = std::array<double, 2>{x[i] - tq * *e.std_error, x[i] + tq * *e.std_error};
-      } else if (!cov.determined[j]) {
-        undetermined.push_back(i);
-      }
+      if (cov.determined[j] && res.dof > 0) var = cov.covariance(idx(j), idx(j)) * cov_scale;
+      if (!cov.determined[j]) undetermined.push_back(i);
     }
+    ParameterEstimate e = parameter_estimate(s, i, x[i], var, tq);
+    e.initial = start[i];
     res.parameters.push_back(e);
   }
 }
@@ -143,6 +125,33 @@ void add_channel_fit_quality(const Dataset& data, FitResult& res) {
 }
 
 }  // namespace
+
+double plain_chi2(const LocalProblem& lp, const ParamVector& x) {
+  FitSettings plain_settings = *lp.settings;
+  plain_settings.loss = LossKind::None;
+  LocalProblem plain = lp;
+  plain.settings = &plain_settings;
+  return 2.0 * problem_cost(plain, x);
+}
+
+ParameterEstimate parameter_estimate(const FitSettings& s, int i, double value,
+                                     std::optional<double> variance, double tq) {
+  ParameterEstimate e;
+  e.name = param_names()[i];
+  e.value = value;
+  e.initial = value;
+  e.lower = s.params[i].lower;
+  e.upper = s.params[i].upper;
+  e.fixed = s.params[i].fixed;
+  if (!e.fixed) {
+    e.at_bound = at_bound(value, e.lower, e.upper);
+    if (variance && std::isfinite(*variance) && *variance >= 0.0) {
+      e.std_error = std::sqrt(*variance);
+      e.ci95 = std::array<double, 2>{value - tq * *e.std_error, value + tq * *e.std_error};
+    }
+  }
+  return e;
+}
 
 bool at_bound(double x, double lower, double upper) {
   return x - lower <= 1e-9 * (1.0 + std::fabs(lower)) ||

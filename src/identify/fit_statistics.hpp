@@ -3,6 +3,7 @@
 // R², and the per-row predictions for plots.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <frictionid/fit_result.hpp>
@@ -24,6 +25,14 @@ struct NoiseTerms {
 std::vector<int> add_fit_statistics(const LocalProblem& lp, const ParamVector& x,
                                     const ParamVector& start, const NoiseTerms& noise,
                                     FitResult& res);
+
+// chi² of the problem at x without the loss (the cost keeps the loss's robustification).
+double plain_chi2(const LocalProblem& lp, const ParamVector& x);
+
+// Parameter i of the settings at `value`: bounds, fixed, at_bound and, where the variance is
+// given, finite and not negative, its standard error and value -/+ tq * stderr as ci95.
+ParameterEstimate parameter_estimate(const FitSettings& s, int i, double value,
+                                     std::optional<double> variance, double tq);
 
 // Whether x sits on a bound: within 1e-9 (1 + |bound|) of it, an absolute-plus-relative distance
 // that does not grow with the width of the box.

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <set>
 
 #include <frictionid/fitter.hpp>
@@ -20,27 +21,23 @@ namespace frictionid {
 namespace {
 
 std::vector<int> shared_indices(const std::vector<std::string>& names) {
-  if (names.empty()) throw std::invalid_argument("--shared: name at least one parameter");
+  if (names.empty()) throw std::invalid_argument("no shared parameter named");
   std::set<int> out;
   for (const auto& n : names) {
     const auto i = param_index(n);
-    if (!i) throw std::invalid_argument("--shared: unknown parameter '" + n + "'");
+    if (!i)
+      throw std::invalid_argument("unknown parameter '" + n +
+                                  "' (f, kappa, h, a, b, m, n, p0, b_tilde)");
     out.insert(*i);
   }
   return {out.begin(), out.end()};
 }
 
-// The run's problem with the shared parameters first among the free ones.
-LocalProblem shared_first(const LocalProblem& p, const std::vector<int>& shared,
-                          const std::string& label) {
+// The run's problem with the shared parameters (free in it: check_shared_parameters) first
+// among the free ones.
+LocalProblem shared_first(const LocalProblem& p, const std::vector<int>& shared) {
   LocalProblem q = p;
   q.free = shared;
-  for (int i : shared)
-    if (std::find(p.free.begin(), p.free.end(), i) == p.free.end()) {
-      const bool read = std::find(p.used.begin(), p.used.end(), i) != p.used.end();
-      throw std::invalid_argument("run " + label + ": shared parameter " + param_names()[i] +
-                                  (read ? " is fixed" : " is not a parameter of its model"));
-    }
   for (int i : p.free)
     if (std::find(shared.begin(), shared.end(), i) == shared.end()) q.free.push_back(i);
   return q;
@@ -71,14 +68,6 @@ double common_start(const std::vector<FittedRun>& fits, int i) {
   return std::clamp(x, lo, hi);
 }
 
-double plain_chi2(const LocalProblem& p, const ParamVector& x) {
-  FitSettings plain = *p.settings;
-  plain.loss = LossKind::None;
-  LocalProblem q = p;
-  q.settings = &plain;
-  return 2.0 * problem_cost(q, x);
-}
-
 // Inverse of a symmetric positive definite matrix through its equilibrated eigen-decomposition;
 // false when it is singular to working precision.
 bool spd_inverse(const Eigen::MatrixXd& h, Eigen::MatrixXd& out) {
@@ -102,26 +91,19 @@ bool spd_inverse(const Eigen::MatrixXd& h, Eigen::MatrixXd& out) {
   return true;
 }
 
-ParameterEstimate estimate(const FitSettings& s, int i, double value, double variance,
-                           bool determined, double tq) {
-  ParameterEstimate e;
-  e.name = param_names()[i];
-  e.value = value;
-  e.initial = value;
-  e.lower = s.params[i].lower;
-  e.upper = s.params[i].upper;
-  e.fixed = s.params[i].fixed;
-  if (!e.fixed) {
-    e.at_bound = at_bound(value, e.lower, e.upper);
-    if (determined && std::isfinite(variance) && variance >= 0.0) {
-      e.std_error = std::sqrt(variance);
-      e.ci95 = std::array<double, 2>{value - tq * *e.std_error, value + tq * *e.std_error};
-    }
-  }
-  return e;
-}
-
 }  // namespace
+
+void check_shared_parameters(const FitSettings& s, const std::vector<std::string>& shared) {
+  const std::vector<int> used = model_parameters(s.model, s.law.kind);
+  for (int i : shared_indices(shared)) {
+    if (std::find(used.begin(), used.end(), i) == used.end())
+      throw std::invalid_argument(std::string(param_names()[i]) +
+                                  " is not a parameter of its model (" + model_name(s.model) + ")");
+    if (s.params[i].fixed)
+      throw std::invalid_argument(std::string("shared parameter ") + param_names()[i] +
+                                  " is fixed");
+  }
+}
 
 JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
                          const std::vector<std::string>& shared_names, int threads,
@@ -130,6 +112,13 @@ JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
   const auto t0 = clock::now();
   const std::vector<int> shared = shared_indices(shared_names);
   if (inputs.empty()) throw std::invalid_argument("a joint fit needs at least one run");
+  for (const auto& in : inputs) {
+    try {
+      check_shared_parameters(in.settings, shared_names);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("run " + in.label + ": " + e.what());
+    }
+  }
   const int workers = resolve_thread_count(threads);
 
   // 1. Every run alone: its optimum and the whitening its noise model gives.
@@ -156,7 +145,7 @@ JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
   std::vector<double> start(shared.size());
   for (std::size_t j = 0; j < shared.size(); ++j) start[j] = common_start(fits, shared[j]);
   for (std::size_t r = 0; r < fits.size(); ++r) {
-    jp.runs.push_back(shared_first(fits[r].problem, shared, inputs[r].label));
+    jp.runs.push_back(shared_first(fits[r].problem, shared));
     jp.runs.back().threads = parallel_runs ? 1 : workers;
     ParamVector x = fits[r].x;
     for (std::size_t j = 0; j < shared.size(); ++j) x[shared[j]] = start[j];
@@ -211,8 +200,9 @@ JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
   const FitSettings& s0 = *fits[0].settings;
   for (std::size_t j = 0; j < ks; ++j) {
     const auto je = static_cast<Eigen::Index>(j);
-    out.shared.push_back(estimate(s0, shared[j], joint.x[0][shared[j]],
-                                  determined ? cov_ss(je, je) : NAN, determined, tq));
+    out.shared.push_back(
+        parameter_estimate(s0, shared[j], joint.x[0][shared[j]],
+                           determined ? std::optional<double>(cov_ss(je, je)) : std::nullopt, tq));
   }
 
   for (std::size_t r = 0; r < fits.size(); ++r) {
@@ -229,10 +219,10 @@ JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
     }
     for (int i : p.used) {
       const auto at = std::find(p.free.begin(), p.free.end(), i) - p.free.begin();
-      double var = NAN;
+      std::optional<double> var;
       if (determined && at < static_cast<long>(p.free.size()))
         var = at < kse ? cov_ss(at, at) : cov_pp(at - kse, at - kse);
-      run.parameters.push_back(estimate(*p.settings, i, x[i], var, determined, tq));
+      run.parameters.push_back(parameter_estimate(*p.settings, i, x[i], var, tq));
     }
     run.cost = problem_cost(p, x);
     run.chi2 = plain_chi2(p, x);
