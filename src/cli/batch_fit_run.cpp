@@ -1,6 +1,7 @@
 #include "cli/batch_fit_run.hpp"
 
 #include <exception>
+#include <optional>
 
 #include <frictionid/fitter.hpp>
 #include <frictionid/io/dataset_csv.hpp>
@@ -10,7 +11,7 @@
 namespace frictionid::cli {
 
 SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer,
-                         const RunFitted& on_fitted) {
+                         const RunFitted& on_fitted, const WarmStart* warm) {
   Dataset data;
   try {
     if (run.file_data) {
@@ -27,7 +28,9 @@ SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer
   try {
     FitSettings s = fit_settings_from_options(run.options, run.options.model);
     s.threads = threads;
-    const FitResult r = Fitter(s).fit(data, observer);
+    std::optional<FitResult> warm_fit;
+    if (warm) warm_fit = fit_warm(s, *warm, data, observer);
+    const FitResult r = warm_fit ? std::move(*warm_fit) : Fitter(s).fit(data, observer);
     if (on_fitted) on_fitted(r, data);
     return summary_row(run.label, r, std::move(covariates));
   } catch (const std::exception& e) {

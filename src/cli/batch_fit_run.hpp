@@ -10,6 +10,7 @@
 #include <frictionid/fit_result.hpp>
 #include <frictionid/io/summary_table.hpp>
 #include "cli/batch_runs.hpp"
+#include "cli/batch_warm_start.hpp"
 
 namespace frictionid::cli {
 
@@ -20,8 +21,9 @@ using RunFitted = std::function<void(const FitResult&, const Dataset&)>;
 // Reads the run's rows: its group of the loaded file, or its file (then its group_rows of the
 // file when it has them without file_data, as a run planned elsewhere does) and fits them with the
 // run's options on `threads` threads. A failure of any kind (unreadable file, bad data, failed fit)
-// is a failed row carrying the message, never an exception.
+// is a failed row carrying the message, never an exception. With `warm`, the fit starts from it
+// and falls back to the full search when the warm fit fails its check (batch_warm_start.hpp).
 SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer,
-                         const RunFitted& on_fitted = {});
+                         const RunFitted& on_fitted = {}, const WarmStart* warm = nullptr);
 
 }  // namespace frictionid::cli

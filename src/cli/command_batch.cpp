@@ -22,6 +22,7 @@
 #include "cli/batch_journal.hpp"
 #include "cli/batch_runs.hpp"
 #include "cli/batch_shared_fit.hpp"
+#include "cli/batch_warm_start.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/fit_options.hpp"
@@ -58,11 +59,24 @@ void write_run_report(const BatchContext& c, const BatchRun& run, const FitResul
 }
 
 // One run's outcome: a failure of any kind is a failed row, never the end of the batch.
-SummaryRow fit_run(const BatchContext& c, const BatchRun& run) {
+// `fitted`, when given, receives the successful fit.
+SummaryRow fit_run(const BatchContext& c, const BatchRun& run, const WarmStart* warm,
+                   std::optional<FitResult>* fitted = nullptr) {
   TerminalObserver observer(c.interrupted, /*progress=*/false);
-  return fit_batch_run(run, c.fit_threads, &observer, [&](const FitResult& r, const Dataset& data) {
-    write_run_report(c, run, r, data);
-  });
+  return fit_batch_run(
+      run, c.fit_threads, &observer,
+      [&](const FitResult& r, const Dataset& data) {
+        write_run_report(c, run, r, data);
+        if (fitted) *fitted = r;
+      },
+      warm);
+}
+
+// With --warm-start every run but the first depends on the first run's fit: a journal entry
+// fitted from another first run is not this run's outcome.
+void key_on_first_run(std::vector<BatchRun>& runs) {
+  for (std::size_t i = 1; i < runs.size(); ++i)
+    runs[i].key ^= runs[0].key + 0x9e3779b97f4a7c15ULL + (runs[i].key << 6) + (runs[i].key >> 2);
 }
 
 std::string duration_text(double s) {
@@ -100,8 +114,9 @@ int run_batch(const BatchOptions& o) {
   if (fs::exists(o.fit.report, ec) && !fs::is_directory(o.fit.report, ec))
     throw InputError(o.fit.report, 0, 0, "--report: exists and is not a directory");
 
-  const std::vector<BatchRun> runs =
+  std::vector<BatchRun> runs =
       plan_batch_runs(o.inputs, o.fit, o.group_by, "reports=" + o.per_run_reports);
+  if (o.warm_start) key_on_first_run(runs);
   check_shared_parameters(runs, shared);
   check_trend_x(o.trend_x, runs);
   fs::create_directories(o.fit.report);
@@ -131,6 +146,31 @@ int run_batch(const BatchOptions& o) {
   std::size_t fitted = 0, failed = 0;
   std::exception_ptr first_error;
   const auto t_fits = std::chrono::steady_clock::now();
+
+  // --warm-start: the first run is fitted in full before the others, which start from it. When
+  // the journal has its row, it is fitted again for its parameters only (same fit, same numbers).
+  // Alone, it may use --threads (the numbers do not depend on it).
+  std::optional<WarmStart> warm;
+  if (o.warm_start && !pending.empty() && runs.size() > 1) {
+    const BatchContext alone{o, context.dir, o.fit.threads, interrupted};
+    std::optional<FitResult> first;
+    if (pending.front() == 0) {
+      SummaryRow row = fit_run(alone, runs[0], nullptr, &first);
+      if (interrupted->load()) return kExitInterrupted;
+      journal.record(runs[0].key, row);
+      ++fitted;
+      if (!row.ok) ++failed;
+      rows[0] = std::move(row);
+      next = 1;
+    } else {
+      TerminalObserver observer(interrupted, /*progress=*/false);
+      fit_batch_run(runs[0], o.fit.threads, &observer,
+                    [&](const FitResult& r, const Dataset&) { first = r; });
+      if (interrupted->load()) return kExitInterrupted;
+    }
+    if (first) warm = warm_start_from(runs[0].label, *first);
+  }
+  const WarmStart* warm_start = warm ? &*warm : nullptr;
   auto worker = [&] {
     for (;;) {
       if (interrupted->load()) return;
@@ -141,7 +181,7 @@ int run_batch(const BatchOptions& o) {
       const std::size_t k = next.fetch_add(1);
       if (k >= pending.size()) return;
       const BatchRun& run = runs[pending[k]];
-      SummaryRow row = fit_run(context, run);
+      SummaryRow row = fit_run(context, run, warm_start);
       if (interrupted->load()) return;  // a cancelled fit is not an outcome: fit it next time
       try {
         journal.record(run.key, row);

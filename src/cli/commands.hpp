@@ -83,6 +83,7 @@ struct BatchOptions {
   int jobs = 0;                          // runs fitted at once; 0: every hardware thread
   std::string shared;                    // P[,P]: parameters common to every run (joint fit)
   std::string trend_x = "mean_N";        // the covariate on summary.html's trend plots' x axis
+  bool warm_start = false;  // runs after the first start from its fit (no global stage)
 };
 int run_batch(const BatchOptions& o);
 

@@ -198,6 +198,10 @@ void add_batch(CLI::App& app, BatchOptions& o) {
   c->add_flag("--force", o.force, "fit every run again, ignoring DIR/journal.jsonl");
   c->add_option("--jobs", o.jobs, "runs fitted at once (0: every hardware thread)")
       ->capture_default_str();
+  c->add_flag("--warm-start", o.warm_start,
+              "fit the first run in full, then start every other run's local fit from its "
+              "parameters without the global stage; a run whose warm fit does not converge or "
+              "fits a channel over twice as loosely (sqrt(1 - R^2)) gets the full search");
   c->add_option("--shared", o.shared,
                 "P[,P]: after the runs' own fits, one joint fit in which these parameters are "
                 "common to every run (DIR/shared.csv, DIR/shared.json), e.g. kappa,h");

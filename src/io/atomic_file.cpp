@@ -42,8 +42,10 @@ void write_through(const std::string& path, const std::string& content) {
     throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
 }
 
+// /dev/stdout, /proc/self/fd/1 and the like; /dev/shm is an ordinary (memory) file system.
 bool under_pseudo_file_system(const std::string& path) {
-  return path.rfind("/dev/", 0) == 0 || path.rfind("/proc/", 0) == 0;
+  return (path.rfind("/dev/", 0) == 0 && path.rfind("/dev/shm/", 0) != 0) ||
+         path.rfind("/proc/", 0) == 0;
 }
 
 void replace_regular_file(const std::string& path, const std::string& content);

@@ -2,9 +2,9 @@
 // flushed, then renamed over the target, so a crash or an error never leaves a half-written file.
 //
 // Outputs that are not regular files are never replaced
-// by a regular one: a FIFO, a device, a socket or anything under /dev or /proc (e.g. /dev/stdout,
-// or /dev/fd/63 from the shell's `>(cmd)`) is written through, without atomicity; a symlink stays a
-// symlink and its target is replaced atomically instead.
+// by a regular one: a FIFO, a device, a socket or anything under /dev (but /dev/shm) or /proc (e.g.
+// /dev/stdout, or /dev/fd/63 from the shell's `>(cmd)`) is written through, without atomicity; a
+// symlink stays a symlink and its target is replaced atomically instead.
 #pragma once
 
 #include <string>

@@ -376,6 +376,79 @@ TEST(Batch, ChangedOptionsRefitRunsTheJournalHolds) {
   EXPECT_NE(b.out.find("2 fitted, 0 from the journal"), std::string::npos) << b.out;
 }
 
+std::string global_algorithm(const fs::path& report_json) {
+  return nlohmann::json::parse(read_file(report_json))["global_search"]["algorithm"];
+}
+
+TEST(Batch, WarmStartRowsAgreeWithFullSearchesAndSayWhereTheyStarted) {
+  const ScratchDir d("warm");
+  make_runs(d, 4, 300);
+  ASSERT_EQ(run("batch " + d / "in" + " --report " + d / "cold").code, 0);
+  const RunResult b = run("batch " + d / "in" + " --warm-start --report " + d / "warm");
+  ASSERT_EQ(b.code, 0) << b.out;
+  const Table cold = read_summary(d / "cold/summary.csv");
+  const Table warm = read_summary(d / "warm/summary.csv");
+  // The first run is fitted in full: the single fit's row, bit for bit.
+  expect_row_equals_single_fit(warm.at("run1"), d / "in/run1.csv", d);
+  EXPECT_EQ(global_algorithm(d / "warm/runs/run1/report.json"), "NLopt GN_CRS2_LM");
+  for (const char* label : {"run2", "run3", "run4"}) {
+    EXPECT_NE(global_algorithm(d / ("warm/runs/" + std::string(label) + "/report.json"))
+                  .find("warm start from run 'run1'"),
+              std::string::npos)
+        << label;
+    // The same optimum: far inside a standard error, to about 8 digits. (A parameter the data
+    // do not determine, here h and b, has no standard error and may sit anywhere on its ridge.)
+    int compared = 0;
+    for (const char* p : {"f", "kappa", "h", "a", "b", "m"}) {
+      if (cold.at(label).at(std::string(p) + "_stderr").empty()) continue;
+      const double c = number(cold.at(label).at(p)), w = number(warm.at(label).at(p));
+      const double se = number(cold.at(label).at(std::string(p) + "_stderr"));
+      EXPECT_LE(std::fabs(w - c), 1e-3 * se) << label << " " << p;
+      EXPECT_LE(std::fabs(w - c), 1e-7 * std::fabs(c)) << label << " " << p;
+      ++compared;
+    }
+    EXPECT_GE(compared, 3) << label;
+  }
+}
+
+TEST(Batch, AWarmFitThatFitsWorseThanTheFirstRunFallsBackToTheFullSearch) {
+  const ScratchDir d("warm_fallback");
+  fs::create_directories(d / "in");
+  // The first run (by name) without noise fits to rounding; the second's warm fit, with 1 %
+  // noise, cannot come near that and must get the full search.
+  ASSERT_EQ(run("generate --model seed --rows 300 --noise 0 --output " + d / "in/a_clean.csv").code,
+            0);
+  ASSERT_EQ(
+      run("generate --model seed --rows 300 --noise 0.01 --seed 4 --output " + d / "in/b_noisy.csv")
+          .code,
+      0);
+  const RunResult b = run("batch " + d / "in" + " --warm-start --report " + d / "out");
+  ASSERT_EQ(b.code, 0) << b.out;
+  EXPECT_EQ(global_algorithm(d / "out/runs/b_noisy/report.json"), "NLopt GN_CRS2_LM");
+  expect_row_equals_single_fit(read_summary(d / "out/summary.csv").at("b_noisy"),
+                               d / "in/b_noisy.csv", d);
+}
+
+TEST(Batch, WarmStartSummariesDoNotDependOnTheNumberOfJobsAndResumeFromTheJournal) {
+  const ScratchDir d("warm_jobs");
+  make_runs(d, 4);
+  for (const char* jobs : {"1", "2"})
+    ASSERT_EQ(run("batch " + d / "in" + " --warm-start --jobs " + jobs + " --report " +
+                  d / ("out" + std::string(jobs)))
+                  .code,
+              0);
+  for (const char* file : {"summary.csv", "summary.json"})
+    EXPECT_EQ(read_file(d / ("out1/" + std::string(file))),
+              read_file(d / ("out2/" + std::string(file))))
+        << file;
+  const RunResult again = run("batch " + d / "in" + " --warm-start --report " + d / "out1");
+  EXPECT_NE(again.out.find("0 fitted, 4 from the journal"), std::string::npos) << again.out;
+  // A cold batch's journal holds only the first run's warm-start outcome: the rest depend on it.
+  ASSERT_EQ(run("batch " + d / "in" + " --report " + d / "cold").code, 0);
+  const RunResult warm = run("batch " + d / "in" + " --warm-start --report " + d / "cold");
+  EXPECT_NE(warm.out.find("3 fitted, 1 from the journal"), std::string::npos) << warm.out;
+}
+
 TEST(Batch, PerRunReportsNoneAndFull) {
   const ScratchDir d("reports");
   make_runs(d, 1);

@@ -34,6 +34,17 @@ TEST(AtomicFile, AFifoIsWrittenInPlaceAndStaysAFifo) {
   EXPECT_EQ(std::distance(fs::directory_iterator(s.path()), fs::directory_iterator()), 1);
 }
 
+TEST(AtomicFile, AFileUnderDevShmIsCreatedLikeAnyOther) {
+  if (!fs::is_directory("/dev/shm")) GTEST_SKIP() << "no /dev/shm";
+  const fs::path dir = fs::path("/dev/shm") / ("frictionid-atomic-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  write_file_atomically((dir / "summary.csv").string(), "a\n");
+  write_file_atomically((dir / "summary.csv").string(), "b\n");
+  EXPECT_EQ(read_file(dir / "summary.csv"), "b\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  fs::remove_all(dir);
+}
+
 TEST(AtomicFile, ASymlinkStaysASymlinkAndItsTargetGetsTheContent) {
   ScratchDir s("symlink");
   std::ofstream(s.path() / "target.csv") << "old\n";
