@@ -5,7 +5,8 @@
 #      contact radius R set by the inflation pressure; a manifest lists them with load and
 #      pressure as covariates;
 #   2. `frictionid batch` of the manifest (per-run report.json);
-#   3. the same with `--shared kappa,h` (every run's own fit, then the joint fit);
+#   3. the same with `--warm-start` (every run after the first starts from its fit), and with
+#      `--shared kappa,h` (every run's own fit, then the joint fit);
 #   4. a loop of single `frictionid fit` calls over the first SINGLE runs;
 #   5. a loop of scipy least_squares (experiments/bench_fit_vs_scipy/fit_scipy.py, the same seed
 #      model and whitening, local stage only, from the truth moved 10-20 %) over the same runs.
@@ -67,9 +68,10 @@ load_before=$(cut -d" " -f1-3 /proc/loadavg)
 
 # 2.-3. The batch, without and with the shared parameters.
 timed batch "$bin" batch "$out/manifest.csv" --report "$out/batch" --jobs "$JOBS"
+timed warm "$bin" batch "$out/manifest.csv" --report "$out/warm" --jobs "$JOBS" --warm-start
 timed shared "$bin" batch "$out/manifest.csv" --report "$out/shared" --jobs "$JOBS" \
   --shared kappa,h
-echo "run.sh: batch $(cat "$out/batch.time"), shared $(cat "$out/shared.time")" >&2
+echo "run.sh: batch $(cat "$out/batch.time"), warm $(cat "$out/warm.time"), shared $(cat "$out/shared.time")" >&2
 
 # 4. Single fits, one process per run, as a shell loop would do.
 head -n $((SINGLE + 1)) "$out/manifest.csv" | tail -n +2 | cut -d, -f2 > "$out/single.txt"
