@@ -71,8 +71,18 @@ void BatchJournal::record(std::uint64_t key, const SummaryRow& row) {
       throw std::runtime_error(path_ + ": cannot write the batch journal: " + std::strerror(errno));
     done += static_cast<std::size_t>(n);
   }
-  if (::fsync(fd_) != 0)
+  if (std::chrono::steady_clock::now() - last_sync_ >= kJournalSyncInterval) sync_locked();
+}
+
+void BatchJournal::sync() {
+  std::lock_guard<std::mutex> guard(mutex_);
+  sync_locked();
+}
+
+void BatchJournal::sync_locked() {
+  if (::syncfs(fd_) != 0)
     throw std::runtime_error(path_ + ": cannot sync the batch journal: " + std::strerror(errno));
+  last_sync_ = std::chrono::steady_clock::now();
 }
 
 }  // namespace frictionid::cli

@@ -1,9 +1,17 @@
 // The journal of `frictionid batch`: DIR/journal.jsonl, one JSON line per finished run (its
-// label, the hash of its inputs and options, and its summary row), appended and fsynced as each
-// run ends. A rerun takes finished runs from it instead of fitting them again, so a killed batch
-// loses at most the runs that were in flight; a torn last line (killed mid-write) is ignored.
+// label, the hash of its inputs and options, and its summary row), appended as each run ends. A
+// rerun takes finished runs from it instead of fitting them again, so a killed batch loses at
+// most the runs that were in flight; a torn last line (killed mid-write) is ignored.
+//
+// Durability is committed in groups: at most every kJournalSyncInterval the file system holding
+// the journal is synced (syncfs), which makes the lines and the runs' report files written
+// before them durable together; sync() at the end. A kill loses nothing written, since the page
+// cache survives the process; a power cut loses at most the runs of the last interval (a run
+// whose line survived without its report file is fitted again, see command_batch.cpp). One sync
+// per run would cost one disk flush per run: on 1000 runs of 2000 rows, a third of the wall time.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <mutex>
@@ -26,19 +34,28 @@ class BatchJournal {
   // are fitted again: their cause (a file being written, memory) may be gone.
   const SummaryRow* finished(const std::string& label, std::uint64_t key) const;
 
-  // Appends one line and fsyncs it; safe to call from several threads.
+  // Appends one line, and syncs when the last sync is kJournalSyncInterval old; safe to call
+  // from several threads.
   void record(std::uint64_t key, const SummaryRow& row);
+
+  // Makes every line and every file written before it on the journal's file system durable.
+  void sync();
 
  private:
   struct Entry {
     std::uint64_t key;
     SummaryRow row;
   };
+  void sync_locked();  // with mutex_ held
+
   std::map<std::string, Entry> entries_;  // the last line per label
   std::mutex mutex_;
   int fd_ = -1;
   std::string path_;
+  std::chrono::steady_clock::time_point last_sync_ = std::chrono::steady_clock::now();
 };
+
+inline constexpr std::chrono::milliseconds kJournalSyncInterval{500};
 
 std::string hex_key(std::uint64_t key);
 

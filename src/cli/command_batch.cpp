@@ -54,7 +54,8 @@ void write_run_report(const BatchContext& c, const BatchRun& run, const FitResul
     fs::create_directories(dir);
     const auto json =
         report_json(r).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
-    write_file_atomically((dir / "report.json").string(), json + "\n");
+    // Durable with the journal's next sync (batch_journal.hpp), not one flush per run.
+    write_file_atomically((dir / "report.json").string(), json + "\n", Flush::Later);
   }
 }
 
@@ -77,6 +78,16 @@ SummaryRow fit_run(const BatchContext& c, const BatchRun& run, const WarmStart* 
 void key_on_first_run(std::vector<BatchRun>& runs) {
   for (std::size_t i = 1; i < runs.size(); ++i)
     runs[i].key ^= runs[0].key + 0x9e3779b97f4a7c15ULL + (runs[i].key << 6) + (runs[i].key >> 2);
+}
+
+// Whether a run the journal holds still has the report file it was written with: a power cut
+// between two syncs may keep a journal line and lose its report (batch_journal.hpp), and a
+// deleted runs/<label>/ means the user wants it back. Such a run is fitted again.
+bool has_run_report(const fs::path& dir, const std::string& per_run_reports, const BatchRun& run) {
+  if (per_run_reports == "none") return true;
+  std::error_code ec;
+  const auto size = fs::file_size(dir / "runs" / run.directory / "report.json", ec);
+  return !ec && size > 0;
 }
 
 std::string duration_text(double s) {
@@ -125,7 +136,8 @@ int run_batch(const BatchOptions& o) {
   std::vector<std::optional<SummaryRow>> rows(runs.size());
   std::vector<std::size_t> pending;
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    if (const SummaryRow* done = journal.finished(runs[i].label, runs[i].key))
+    const SummaryRow* done = journal.finished(runs[i].label, runs[i].key);
+    if (done && has_run_report(o.fit.report, o.per_run_reports, runs[i]))
       rows[i] = *done;
     else
       pending.push_back(i);
@@ -208,6 +220,7 @@ int run_batch(const BatchOptions& o) {
   for (auto& t : threads) t.join();
   if (progress && fitted > 0) std::fprintf(stderr, "\r%80s\r", "");
   if (first_error) std::rethrow_exception(first_error);
+  journal.sync();  // every line and run report durable before the summary names them
   if (interrupted->load()) {
     std::fprintf(stderr,
                  "frictionid: interrupted after %zu of %zu runs; they are in %s/journal.jsonl, "

@@ -48,11 +48,11 @@ bool under_pseudo_file_system(const std::string& path) {
          path.rfind("/proc/", 0) == 0;
 }
 
-void replace_regular_file(const std::string& path, const std::string& content);
+void replace_regular_file(const std::string& path, const std::string& content, Flush flush);
 
 }  // namespace
 
-void write_file_atomically(const std::string& path, const std::string& content) {
+void write_file_atomically(const std::string& path, const std::string& content, Flush flush) {
   struct stat link_sb, sb;
   const bool exists = ::lstat(path.c_str(), &link_sb) == 0;
   const bool followed = ::stat(path.c_str(), &sb) == 0;
@@ -72,14 +72,14 @@ void write_file_atomically(const std::string& path, const std::string& content) 
           next.is_absolute() ? next.string() : (fs::path(target).parent_path() / next).string();
     }
     if (under_pseudo_file_system(target)) return write_through(path, content);
-    return replace_regular_file(target, content);
+    return replace_regular_file(target, content, flush);
   }
-  replace_regular_file(path, content);
+  replace_regular_file(path, content, flush);
 }
 
 namespace {
 
-void replace_regular_file(const std::string& path, const std::string& content) {
+void replace_regular_file(const std::string& path, const std::string& content, Flush flush) {
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::string tmpl = (dir / ("." + target.filename().string() + ".tmp.XXXXXX")).string();
@@ -95,7 +95,7 @@ void replace_regular_file(const std::string& path, const std::string& content) {
     errno = err;
     fail("write");
   }
-  if (::fsync(fd) != 0) fail("fsync");
+  if (flush == Flush::Now && ::fsync(fd) != 0) fail("fsync");
   if (::fchmod(fd, 0644) != 0) fail("chmod");
   if (::close(fd) != 0) {
     std::remove(tmpl.c_str());

@@ -11,8 +11,14 @@
 
 namespace frictionid {
 
+// When the content reaches the disk: `Now` fsyncs it before the rename; `Later` leaves that to
+// the caller, who syncs the file system afterwards (syncfs), as `batch` does for a group of runs.
+// Either way a reader sees the old file or the whole new one, never part of one.
+enum class Flush { Now, Later };
+
 // Throws std::runtime_error (with the path and the system's reason) on failure; the temporary
 // file is removed in that case.
-void write_file_atomically(const std::string& path, const std::string& content);
+void write_file_atomically(const std::string& path, const std::string& content,
+                           Flush flush = Flush::Now);
 
 }  // namespace frictionid

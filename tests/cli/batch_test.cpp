@@ -449,6 +449,18 @@ TEST(Batch, WarmStartSummariesDoNotDependOnTheNumberOfJobsAndResumeFromTheJourna
   EXPECT_NE(warm.out.find("3 fitted, 1 from the journal"), std::string::npos) << warm.out;
 }
 
+TEST(Batch, ARunWhoseReportFileIsGoneIsFittedAgainOnTheRerun) {
+  const ScratchDir d("lost_report");
+  make_runs(d, 3);
+  ASSERT_EQ(run("batch " + d / "in" + " --report " + d / "out").code, 0);
+  const std::string before = read_file(d / "out/summary.csv");
+  fs::remove(d / "out/runs/run2/report.json");
+  const RunResult b = run("batch " + d / "in" + " --report " + d / "out");
+  EXPECT_NE(b.out.find("1 fitted, 2 from the journal"), std::string::npos) << b.out;
+  EXPECT_GT(fs::file_size(d / "out/runs/run2/report.json"), 0u);
+  EXPECT_EQ(read_file(d / "out/summary.csv"), before);
+}
+
 TEST(Batch, PerRunReportsNoneAndFull) {
   const ScratchDir d("reports");
   make_runs(d, 1);

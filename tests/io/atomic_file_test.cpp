@@ -45,6 +45,14 @@ TEST(AtomicFile, AFileUnderDevShmIsCreatedLikeAnyOther) {
   fs::remove_all(dir);
 }
 
+TEST(AtomicFile, AWriteFlushedLaterReplacesTheFileWholeAndLeavesNoTemporary) {
+  ScratchDir s("later");
+  write_file_atomically(s / "report.json", "old\n");
+  write_file_atomically(s / "report.json", "new\n", frictionid::Flush::Later);
+  EXPECT_EQ(read_file(s.path() / "report.json"), "new\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(s.path()), fs::directory_iterator()), 1);
+}
+
 TEST(AtomicFile, ASymlinkStaysASymlinkAndItsTargetGetsTheContent) {
   ScratchDir s("symlink");
   std::ofstream(s.path() / "target.csv") << "old\n";
