@@ -15,6 +15,7 @@
 
 #include <frictionid/io/input_error.hpp>
 #include "io/encoding_sniffer.hpp"
+#include "io/line_reader.hpp"
 #include "io/text.hpp"
 
 namespace frictionid {
@@ -434,54 +435,45 @@ Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns, bool
 
   Dataset data;
   data.source = path;
-  try {
-    io::LineReader reader(path);
-    std::vector<std::string_view> fields;
-    fields.reserve(32);
-    const Header h = read_header(reader.next_line(), path, columns, require_channels, fields, data);
+  io_detail::LineReader reader(path);
+  std::vector<std::string_view> fields;
+  fields.reserve(32);
+  const Header h = read_header(reader.next_line(), path, columns, require_channels, fields, data);
 
-    std::error_code size_error;
-    const std::uintmax_t file_bytes = std::filesystem::file_size(path, size_error);
-    double value[kSlotCount] = {};
-    bool given[kSlotCount] = {};
-    while (char* line = reader.next_line()) {
-      const std::size_t line_no = reader.get_file_line();
-      reject_carriage_return(line, path, line_no);
-      const std::size_t length = split_fields(line, fields, path, line_no);
-      if (fields.size() == 1 && fields[0].empty()) continue;  // blank line
-      // A bound on memory for an input without end (a pipe, `yes`): about 2 GB of rows.
-      constexpr std::size_t kMaxRows = 20'000'000;
-      if (data.rows() == kMaxRows)
-        throw InputError(path, line_no, 0,
-                         "more than 20000000 rows; expected at most that many (split the data or "
-                         "subsample it)");
-      if (data.rows() == 0)
-        reserve_rows(data, estimate_rows(file_bytes, length, h.field_count()), h.has_sigma);
-      if (fields.size() != h.field_count()) {
-        const bool few = fields.size() < h.field_count();
-        throw InputError(path, line_no, (few ? fields.size() : h.field_count()) + 1,
-                         "row has " + std::to_string(fields.size()) + " fields, expected " +
-                             std::to_string(h.field_count()) + " as in the header" +
-                             (few ? std::string(" (the row ends early)")
-                                  : "; first extra field " + shown(fields[h.field_count()])) +
-                             delimiter_hint(fields));
-      }
-      parse_row(h, fields, line_no, value, given);
-      check_row_channels(h, fields, line_no, value, given, require_channels);
-      append_row(h, fields, line_no, value, given, data);
-    }
+  std::error_code size_error;
+  const std::uintmax_t file_bytes = std::filesystem::file_size(path, size_error);
+  double value[kSlotCount] = {};
+  bool given[kSlotCount] = {};
+  while (char* line = reader.next_line()) {
+    const std::size_t line_no = reader.line_number();
+    reject_carriage_return(line, path, line_no);
+    const std::size_t length = split_fields(line, fields, path, line_no);
+    if (fields.size() == 1 && fields[0].empty()) continue;  // blank line
+    // A bound on memory for an input without end (a pipe, `yes`): about 2 GB of rows.
+    constexpr std::size_t kMaxRows = 20'000'000;
+    if (data.rows() == kMaxRows)
+      throw InputError(path, line_no, 0,
+                       "more than 20000000 rows; expected at most that many (split the data or "
+                       "subsample it)");
     if (data.rows() == 0)
-      throw InputError(path, 1, 0,
-                       "the header is not followed by any data row; expected at least one "
-                       "measurement row");
-  } catch (const io::error::can_not_open_file& e) {
-    throw InputError(path, 0, 0,
-                     std::string("cannot open file") +
-                         (e.errno_value ? std::string(": ") + std::strerror(e.errno_value) : ""));
-  } catch (const io::error::line_length_limit_exceeded& e) {
-    throw InputError(path, static_cast<std::size_t>(e.file_line), 0,
-                     "line is longer than 2^24-1 characters; expected a CSV row");
+      reserve_rows(data, estimate_rows(file_bytes, length, h.field_count()), h.has_sigma);
+    if (fields.size() != h.field_count()) {
+      const bool few = fields.size() < h.field_count();
+      throw InputError(path, line_no, (few ? fields.size() : h.field_count()) + 1,
+                       "row has " + std::to_string(fields.size()) + " fields, expected " +
+                           std::to_string(h.field_count()) + " as in the header" +
+                           (few ? std::string(" (the row ends early)")
+                                : "; first extra field " + shown(fields[h.field_count()])) +
+                           delimiter_hint(fields));
+    }
+    parse_row(h, fields, line_no, value, given);
+    check_row_channels(h, fields, line_no, value, given, require_channels);
+    append_row(h, fields, line_no, value, given, data);
   }
+  if (data.rows() == 0)
+    throw InputError(path, 1, 0,
+                     "the header is not followed by any data row; expected at least one "
+                     "measurement row");
   return data;
 }
 
