@@ -15,7 +15,7 @@ namespace {
 
 // The size of the first buffer and so of most reads: large enough that a read(2) call costs
 // little per byte, small enough that the bytes just read are still in the cache when parsed.
-constexpr std::size_t kBlock = std::size_t{1} << 18;
+constexpr std::size_t kBlock = std::size_t{1} << 17;
 
 // The buffer never needs more than the longest line plus room for one read after it.
 constexpr std::size_t kMaxCapacity = LineReader::kMaxLineLength + 1 + kBlock;
