@@ -81,13 +81,13 @@ std::string canonical_list() {
   return out;
 }
 
-// Splits `line` in place into trimmed, unquoted fields (views into `line`) and returns the line's
-// length. The vector is reused between rows, so a row costs no allocation. Lines without a quote
-// take a memchr fast path; others go through fast-cpp-csv-parser's double-quote policy.
-std::size_t split_fields(char* line, std::vector<std::string_view>& fields, const std::string& file,
-                         std::size_t line_no) {
+// Splits `line` (of `length` characters up to its NUL) in place into trimmed, unquoted fields
+// (views into `line`). The vector is reused between rows, so a row costs no allocation. Lines
+// without a quote take a memchr fast path; others go through fast-cpp-csv-parser's double-quote
+// policy.
+void split_fields(char* line, std::size_t length, std::vector<std::string_view>& fields,
+                  const std::string& file, std::size_t line_no) {
   fields.clear();
-  const std::size_t length = std::strlen(line);
   char* const line_end = line + length;
   if (std::memchr(line, '"', length) == nullptr) {
     char* begin = line;
@@ -98,7 +98,7 @@ std::size_t split_fields(char* line, std::vector<std::string_view>& fields, cons
       while (b != e && (*b == ' ' || *b == '\t')) ++b;
       while (b != e && (e[-1] == ' ' || e[-1] == '\t')) --e;
       fields.emplace_back(b, static_cast<std::size_t>(e - b));
-      if (!comma) return length;
+      if (!comma) return;
       begin = comma + 1;
     }
   }
@@ -119,7 +119,7 @@ std::size_t split_fields(char* line, std::vector<std::string_view>& fields, cons
     TrimPolicy::trim(b, e);
     QuotePolicy::unescape(b, e);
     fields.emplace_back(b, static_cast<std::size_t>(e - b));
-    if (last) return length;
+    if (last) return;
     begin = next;
   }
 }
@@ -234,9 +234,12 @@ struct Header {
 };
 
 // A carriage return inside a line means CR-only line ends (CRLF's CR is already stripped).
-void reject_carriage_return(const char* line, const std::string& path, std::size_t line_no) {
-  const char* cr = std::strchr(line, '\r');
-  if (!cr) return;
+// Returns the line's length up to its first NUL, which the same scan finds: the rest of a line
+// after a NUL byte is ignored, as it always was.
+std::size_t reject_carriage_return(const char* line, const std::string& path, std::size_t line_no) {
+  const std::size_t length = std::strcspn(line, "\r");
+  if (line[length] != '\r') return length;
+  const char* cr = line + length;
   const auto column = std::count(line, cr, ',') + 1;
   throw InputError(path, line_no, static_cast<std::size_t>(column),
                    line_no == 1
@@ -319,11 +322,11 @@ Header read_header(char* line, const std::string& path, const ColumnMap& columns
   if (line == nullptr)
     throw InputError(path, 0, 0,
                      "empty file; expected a header row such as v_x,v_y,omega,N,R,T_x,T_y,M_z");
-  reject_carriage_return(line, path, 1);
+  const std::size_t length = reject_carriage_return(line, path, 1);
   Header h;
   h.path = path;
   h.col = lookup_names(columns);
-  split_fields(line, fields, path, 1);
+  split_fields(line, length, fields, path, 1);
   h.names.assign(fields.begin(), fields.end());
   match_columns(h, fields);
   check_columns(h, fields, require_channels);
@@ -446,8 +449,8 @@ Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns, bool
   bool given[kSlotCount] = {};
   while (char* line = reader.next_line()) {
     const std::size_t line_no = reader.line_number();
-    reject_carriage_return(line, path, line_no);
-    const std::size_t length = split_fields(line, fields, path, line_no);
+    const std::size_t length = reject_carriage_return(line, path, line_no);
+    split_fields(line, length, fields, path, line_no);
     if (fields.size() == 1 && fields[0].empty()) continue;  // blank line
     // A bound on memory for an input without end (a pipe, `yes`): about 2 GB of rows.
     constexpr std::size_t kMaxRows = 20'000'000;
