@@ -15,6 +15,7 @@
 
 #include <frictionid/io/input_error.hpp>
 #include "io/encoding_sniffer.hpp"
+#include "io/huge_pages.hpp"
 #include "io/line_reader.hpp"
 #include "io/text.hpp"
 
@@ -148,13 +149,21 @@ std::size_t estimate_rows(std::uintmax_t file_bytes, std::size_t first_row_lengt
   return static_cast<std::size_t>(std::min(typical, most));
 }
 
+// Reserves room for `rows` rows in `column`; a large column gets huge pages, since every row of
+// it is about to be written.
+template <class T>
+void reserve_column(std::vector<T>& column, std::size_t rows) {
+  column.reserve(rows);
+  io_detail::advise_huge_pages(column.data(), column.capacity() * sizeof(T));
+}
+
 void reserve_rows(Dataset& d, std::size_t rows, const bool (&has_sigma)[kChannelCount]) {
-  d.line.reserve(rows);
-  for (auto* v : {&d.v_x, &d.v_y, &d.omega, &d.N, &d.R}) v->reserve(rows);
+  reserve_column(d.line, rows);
+  for (auto* v : {&d.v_x, &d.v_y, &d.omega, &d.N, &d.R}) reserve_column(*v, rows);
   for (int c = 0; c < kChannelCount; ++c) {
-    d.value[c].reserve(rows);
-    d.present[c].reserve(rows);
-    if (has_sigma[c]) d.sigma[c].reserve(rows);
+    reserve_column(d.value[c], rows);
+    reserve_column(d.present[c], rows);
+    if (has_sigma[c]) reserve_column(d.sigma[c], rows);
   }
 }
 
