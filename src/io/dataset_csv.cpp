@@ -442,12 +442,13 @@ Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns, bool
   if (std::filesystem::is_directory(path, ec))
     throw InputError(path, 0, 0, "is a directory; expected a CSV file");
 
-  if (const std::string hint = unsupported_encoding_hint(file_head(path)); !hint.empty())
+  io_detail::LineReader reader(path);
+  // The head as the reader read it: opening the path again would lose it from a pipe.
+  if (const std::string hint = unsupported_encoding_hint(reader.head()); !hint.empty())
     throw InputError(path, 1, 0, hint);
 
   Dataset data;
   data.source = path;
-  io_detail::LineReader reader(path);
   std::vector<std::string_view> fields;
   fields.reserve(32);
   const Header h = read_header(reader.next_line(), path, columns, require_channels, fields, data);

@@ -30,9 +30,10 @@ LineReader::LineReader(const std::string& path) : path_(path) {
   try {
     capacity_ = kBlock;
     buffer_.reset(new char[capacity_ + 1]);
-    // A pipe may deliver fewer than 3 bytes at first: read until a BOM could be recognised.
-    while (end_ < 3 && fill()) {
+    // A pipe may deliver fewer bytes at first: read until the head is complete.
+    while (end_ < kHeadBytes && fill()) {
     }
+    head_.assign(buffer_.get(), std::min(end_, kHeadBytes));
     if (end_ >= 3 && std::memcmp(buffer_.get(), "\xEF\xBB\xBF", 3) == 0) begin_ = 3;
   } catch (...) {
     ::close(fd_);

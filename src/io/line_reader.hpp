@@ -18,6 +18,8 @@ class LineReader {
  public:
   // The longest line accepted, in characters before the LF (a CR of CRLF counts).
   static constexpr std::size_t kMaxLineLength = (std::size_t{1} << 24) - 1;
+  // How many bytes head() holds at most.
+  static constexpr std::size_t kHeadBytes = 64;
 
   // Opens `path`; throws InputError "cannot open file: <reason>" when it cannot.
   explicit LineReader(const std::string& path);
@@ -36,11 +38,16 @@ class LineReader {
   // The 1-based number of that line; every line counts, blank ones too.
   std::size_t line_number() const { return line_number_; }
 
+  // The first kHeadBytes bytes of the input as they are (a BOM included), or all of a shorter
+  // input: what an encoding check looks at. A pipe cannot be opened a second time for them.
+  const std::string& head() const { return head_; }
+
  private:
   bool fill();  // reads more input after end_; false at the end of the input
   void make_room();
 
   std::string path_;
+  std::string head_;
   int fd_ = -1;
   std::unique_ptr<char[]> buffer_;
   std::size_t capacity_ = 0;  // usable bytes; one more is allocated for a final NUL

@@ -78,6 +78,16 @@ TEST(LineReader, Utf8BomIsSkippedAtTheStartOnly) {
   EXPECT_EQ(all_lines(write(dir, "\xEF\xBB")), (Lines{"\xEF\xBB"}));
 }
 
+TEST(LineReader, HeadHoldsTheFirstBytesAsTheyAre) {
+  ScratchDir dir("line_reader_head");
+  EXPECT_EQ(LineReader(write(dir, "\xEF\xBB\xBFv_x\r\n")).head(), "\xEF\xBB\xBFv_x\r\n");
+  const std::string long_text(1000, 'z');
+  LineReader reader(write(dir, long_text));
+  EXPECT_EQ(reader.head(), long_text.substr(0, LineReader::kHeadBytes));
+  EXPECT_EQ(reader.next_line(), long_text);
+  EXPECT_EQ(LineReader(write(dir, "")).head(), "");
+}
+
 TEST(LineReader, BlankLinesAreReturnedAndCounted) {
   ScratchDir dir("line_reader_blank");
   LineReader reader(write(dir, "a\n\n\nb\n"));
@@ -168,8 +178,11 @@ TEST(LineReader, PipeIsReadLikeAFile) {
     ::close(w);
   });
   std::vector<std::string> lines;
+  std::string head;
   try {
-    lines = all_lines("/dev/fd/" + std::to_string(fds[0]));
+    LineReader reader("/dev/fd/" + std::to_string(fds[0]));
+    head = reader.head();
+    lines = all_lines(reader);
   } catch (...) {
     ::close(fds[0]);
     writer.join();
@@ -177,6 +190,8 @@ TEST(LineReader, PipeIsReadLikeAFile) {
   }
   ::close(fds[0]);
   writer.join();
+  EXPECT_EQ(head.size(), LineReader::kHeadBytes);
+  EXPECT_EQ(head.substr(0, 16), "\xEF\xBB\xBFh\r\nrow 1,1.5\n");
   ASSERT_EQ(lines.size(), kRows + 2u);
   EXPECT_EQ(lines.front(), "h");
   EXPECT_EQ(lines[1], "row 1,1.5");
