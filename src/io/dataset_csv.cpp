@@ -244,11 +244,11 @@ struct Header {
 
 // A carriage return inside a line means CR-only line ends (CRLF's CR is already stripped).
 // Returns the line's length up to its first NUL, which the same scan finds: the rest of a line
-// after a NUL byte is ignored, as it always was.
+// after a NUL byte is ignored, as it always was. (glibc's strchrnul is a vectorised one-character
+// search; strcspn with one character was slower than strchr and strlen together.)
 std::size_t reject_carriage_return(const char* line, const std::string& path, std::size_t line_no) {
-  const std::size_t length = std::strcspn(line, "\r");
-  if (line[length] != '\r') return length;
-  const char* cr = line + length;
+  const char* const cr = ::strchrnul(line, '\r');
+  if (*cr != '\r') return static_cast<std::size_t>(cr - line);
   const auto column = std::count(line, cr, ',') + 1;
   throw InputError(path, line_no, static_cast<std::size_t>(column),
                    line_no == 1
