@@ -15,6 +15,8 @@
 
 #include <frictionid/io/input_error.hpp>
 #include "io/encoding_sniffer.hpp"
+#include "io/huge_pages.hpp"
+#include "io/line_reader.hpp"
 #include "io/text.hpp"
 
 namespace frictionid {
@@ -80,13 +82,13 @@ std::string canonical_list() {
   return out;
 }
 
-// Splits `line` in place into trimmed, unquoted fields (views into `line`) and returns the line's
-// length. The vector is reused between rows, so a row costs no allocation. Lines without a quote
-// take a memchr fast path; others go through fast-cpp-csv-parser's double-quote policy.
-std::size_t split_fields(char* line, std::vector<std::string_view>& fields, const std::string& file,
-                         std::size_t line_no) {
+// Splits `line` (of `length` characters up to its NUL) in place into trimmed, unquoted fields
+// (views into `line`). The vector is reused between rows, so a row costs no allocation. Lines
+// without a quote take a memchr fast path; others go through fast-cpp-csv-parser's double-quote
+// policy.
+void split_fields(char* line, std::size_t length, std::vector<std::string_view>& fields,
+                  const std::string& file, std::size_t line_no) {
   fields.clear();
-  const std::size_t length = std::strlen(line);
   char* const line_end = line + length;
   if (std::memchr(line, '"', length) == nullptr) {
     char* begin = line;
@@ -97,7 +99,7 @@ std::size_t split_fields(char* line, std::vector<std::string_view>& fields, cons
       while (b != e && (*b == ' ' || *b == '\t')) ++b;
       while (b != e && (e[-1] == ' ' || e[-1] == '\t')) --e;
       fields.emplace_back(b, static_cast<std::size_t>(e - b));
-      if (!comma) return length;
+      if (!comma) return;
       begin = comma + 1;
     }
   }
@@ -118,7 +120,7 @@ std::size_t split_fields(char* line, std::vector<std::string_view>& fields, cons
     TrimPolicy::trim(b, e);
     QuotePolicy::unescape(b, e);
     fields.emplace_back(b, static_cast<std::size_t>(e - b));
-    if (last) return length;
+    if (last) return;
     begin = next;
   }
 }
@@ -147,13 +149,21 @@ std::size_t estimate_rows(std::uintmax_t file_bytes, std::size_t first_row_lengt
   return static_cast<std::size_t>(std::min(typical, most));
 }
 
+// Reserves room for `rows` rows in `column`; a large column gets huge pages, since every row of
+// it is about to be written.
+template <class T>
+void reserve_column(std::vector<T>& column, std::size_t rows) {
+  column.reserve(rows);
+  io_detail::advise_huge_pages(column.data(), column.capacity() * sizeof(T));
+}
+
 void reserve_rows(Dataset& d, std::size_t rows, const bool (&has_sigma)[kChannelCount]) {
-  d.line.reserve(rows);
-  for (auto* v : {&d.v_x, &d.v_y, &d.omega, &d.N, &d.R}) v->reserve(rows);
+  reserve_column(d.line, rows);
+  for (auto* v : {&d.v_x, &d.v_y, &d.omega, &d.N, &d.R}) reserve_column(*v, rows);
   for (int c = 0; c < kChannelCount; ++c) {
-    d.value[c].reserve(rows);
-    d.present[c].reserve(rows);
-    if (has_sigma[c]) d.sigma[c].reserve(rows);
+    reserve_column(d.value[c], rows);
+    reserve_column(d.present[c], rows);
+    if (has_sigma[c]) reserve_column(d.sigma[c], rows);
   }
 }
 
@@ -233,9 +243,12 @@ struct Header {
 };
 
 // A carriage return inside a line means CR-only line ends (CRLF's CR is already stripped).
-void reject_carriage_return(const char* line, const std::string& path, std::size_t line_no) {
-  const char* cr = std::strchr(line, '\r');
-  if (!cr) return;
+// Returns the line's length up to its first NUL, which the same scan finds: the rest of a line
+// after a NUL byte is ignored, as it always was. (glibc's strchrnul is a vectorised one-character
+// search; strcspn with one character was slower than strchr and strlen together.)
+std::size_t reject_carriage_return(const char* line, const std::string& path, std::size_t line_no) {
+  const char* const cr = ::strchrnul(line, '\r');
+  if (*cr != '\r') return static_cast<std::size_t>(cr - line);
   const auto column = std::count(line, cr, ',') + 1;
   throw InputError(path, line_no, static_cast<std::size_t>(column),
                    line_no == 1
@@ -318,11 +331,11 @@ Header read_header(char* line, const std::string& path, const ColumnMap& columns
   if (line == nullptr)
     throw InputError(path, 0, 0,
                      "empty file; expected a header row such as v_x,v_y,omega,N,R,T_x,T_y,M_z");
-  reject_carriage_return(line, path, 1);
+  const std::size_t length = reject_carriage_return(line, path, 1);
   Header h;
   h.path = path;
   h.col = lookup_names(columns);
-  split_fields(line, fields, path, 1);
+  split_fields(line, length, fields, path, 1);
   h.names.assign(fields.begin(), fields.end());
   match_columns(h, fields);
   check_columns(h, fields, require_channels);
@@ -429,59 +442,51 @@ Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns, bool
   if (std::filesystem::is_directory(path, ec))
     throw InputError(path, 0, 0, "is a directory; expected a CSV file");
 
-  if (const std::string hint = unsupported_encoding_hint(file_head(path)); !hint.empty())
+  io_detail::LineReader reader(path);
+  // The head as the reader read it: opening the path again would lose it from a pipe.
+  if (const std::string hint = unsupported_encoding_hint(reader.head()); !hint.empty())
     throw InputError(path, 1, 0, hint);
 
   Dataset data;
   data.source = path;
-  try {
-    io::LineReader reader(path);
-    std::vector<std::string_view> fields;
-    fields.reserve(32);
-    const Header h = read_header(reader.next_line(), path, columns, require_channels, fields, data);
+  std::vector<std::string_view> fields;
+  fields.reserve(32);
+  const Header h = read_header(reader.next_line(), path, columns, require_channels, fields, data);
 
-    std::error_code size_error;
-    const std::uintmax_t file_bytes = std::filesystem::file_size(path, size_error);
-    double value[kSlotCount] = {};
-    bool given[kSlotCount] = {};
-    while (char* line = reader.next_line()) {
-      const std::size_t line_no = reader.get_file_line();
-      reject_carriage_return(line, path, line_no);
-      const std::size_t length = split_fields(line, fields, path, line_no);
-      if (fields.size() == 1 && fields[0].empty()) continue;  // blank line
-      // A bound on memory for an input without end (a pipe, `yes`): about 2 GB of rows.
-      constexpr std::size_t kMaxRows = 20'000'000;
-      if (data.rows() == kMaxRows)
-        throw InputError(path, line_no, 0,
-                         "more than 20000000 rows; expected at most that many (split the data or "
-                         "subsample it)");
-      if (data.rows() == 0)
-        reserve_rows(data, estimate_rows(file_bytes, length, h.field_count()), h.has_sigma);
-      if (fields.size() != h.field_count()) {
-        const bool few = fields.size() < h.field_count();
-        throw InputError(path, line_no, (few ? fields.size() : h.field_count()) + 1,
-                         "row has " + std::to_string(fields.size()) + " fields, expected " +
-                             std::to_string(h.field_count()) + " as in the header" +
-                             (few ? std::string(" (the row ends early)")
-                                  : "; first extra field " + shown(fields[h.field_count()])) +
-                             delimiter_hint(fields));
-      }
-      parse_row(h, fields, line_no, value, given);
-      check_row_channels(h, fields, line_no, value, given, require_channels);
-      append_row(h, fields, line_no, value, given, data);
-    }
+  std::error_code size_error;
+  const std::uintmax_t file_bytes = std::filesystem::file_size(path, size_error);
+  double value[kSlotCount] = {};
+  bool given[kSlotCount] = {};
+  while (char* line = reader.next_line()) {
+    const std::size_t line_no = reader.line_number();
+    const std::size_t length = reject_carriage_return(line, path, line_no);
+    split_fields(line, length, fields, path, line_no);
+    if (fields.size() == 1 && fields[0].empty()) continue;  // blank line
+    // A bound on memory for an input without end (a pipe, `yes`): about 2 GB of rows.
+    constexpr std::size_t kMaxRows = 20'000'000;
+    if (data.rows() == kMaxRows)
+      throw InputError(path, line_no, 0,
+                       "more than 20000000 rows; expected at most that many (split the data or "
+                       "subsample it)");
     if (data.rows() == 0)
-      throw InputError(path, 1, 0,
-                       "the header is not followed by any data row; expected at least one "
-                       "measurement row");
-  } catch (const io::error::can_not_open_file& e) {
-    throw InputError(path, 0, 0,
-                     std::string("cannot open file") +
-                         (e.errno_value ? std::string(": ") + std::strerror(e.errno_value) : ""));
-  } catch (const io::error::line_length_limit_exceeded& e) {
-    throw InputError(path, static_cast<std::size_t>(e.file_line), 0,
-                     "line is longer than 2^24-1 characters; expected a CSV row");
+      reserve_rows(data, estimate_rows(file_bytes, length, h.field_count()), h.has_sigma);
+    if (fields.size() != h.field_count()) {
+      const bool few = fields.size() < h.field_count();
+      throw InputError(path, line_no, (few ? fields.size() : h.field_count()) + 1,
+                       "row has " + std::to_string(fields.size()) + " fields, expected " +
+                           std::to_string(h.field_count()) + " as in the header" +
+                           (few ? std::string(" (the row ends early)")
+                                : "; first extra field " + shown(fields[h.field_count()])) +
+                           delimiter_hint(fields));
+    }
+    parse_row(h, fields, line_no, value, given);
+    check_row_channels(h, fields, line_no, value, given, require_channels);
+    append_row(h, fields, line_no, value, given, data);
   }
+  if (data.rows() == 0)
+    throw InputError(path, 1, 0,
+                     "the header is not followed by any data row; expected at least one "
+                     "measurement row");
   return data;
 }
 

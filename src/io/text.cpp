@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <system_error>
 #include <vector>
 
@@ -29,6 +30,43 @@ std::string shown(std::string_view text, std::size_t max_bytes) {
   return out + (text.size() > max_bytes ? "...'" : "'");
 }
 
+namespace {
+
+// Clinger's fast path. A decimal without exponent whose digits, read as one whole number w, make
+// at most 2^53 is w / 10^k (k digits after the point), both exact in a double, so one correctly
+// rounded division gives the correctly rounded value: the one from_chars returns. Such numbers
+// (0, 2000, 0.05, -1.25) fill many columns of data files, and this costs a fraction of
+// from_chars. False for any other text, which from_chars then reads.
+bool parse_short_decimal(const char* p, const char* last, bool negative, double& out) {
+  // 2^53 has 16 digits: a longer text (such as the 17 significant digits %.17g writes) is
+  // left to from_chars before any digit is read.
+  if (last - p > 17) return false;
+  static constexpr double kPowersOf10[] = {1e0, 1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7, 1e8,
+                                           1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16};
+  std::uint64_t whole = 0;  // at most 17 digits: no overflow
+  bool digits = false;
+  int after_point = -1;  // digits after the point; -1 without a point
+  for (; p != last; ++p) {
+    const unsigned digit = static_cast<unsigned char>(*p) - unsigned{'0'};
+    if (digit <= 9) {
+      whole = whole * 10 + digit;
+      digits = true;
+      if (after_point >= 0) ++after_point;
+    } else if (*p == '.' && after_point < 0 && digits) {
+      after_point = 0;
+    } else {
+      return false;
+    }
+  }
+  if (!digits || after_point == 0 || whole > (std::uint64_t{1} << 53)) return false;
+  double value = static_cast<double>(whole);
+  if (after_point > 0) value /= kPowersOf10[after_point];
+  out = negative ? -value : value;
+  return true;
+}
+
+}  // namespace
+
 const char* parse_double_strict(std::string_view text, double& out) {
   if (text.empty()) return "empty";
   const char* first = text.data();
@@ -40,6 +78,7 @@ const char* parse_double_strict(std::string_view text, double& out) {
     ++first;
   }
   const char* digits = first + (*first == '-' ? 1 : 0);
+  if (parse_short_decimal(digits, last, digits != first, out)) return nullptr;
   if (last - digits >= 2 && digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X'))
     return "hexadecimal floats are not accepted";
   const auto [ptr, ec] = std::from_chars(first, last, out);

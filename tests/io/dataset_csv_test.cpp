@@ -1,8 +1,11 @@
 #include <frictionid/io/dataset_csv.hpp>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -10,7 +13,9 @@
 #include <fstream>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <string>
+#include <thread>
 
 #include <frictionid/io/input_error.hpp>
 
@@ -50,6 +55,35 @@ class DatasetCsv : public ::testing::Test {
     const fs::path p = dir_ / name;
     std::ofstream(p, std::ios::binary) << content;
     return p.string();
+  }
+
+  // Loads `content` from a pipe (its /dev/fd path), written by another thread: the first bytes
+  // one at a time, then the rest, in pieces as a pipe delivers them.
+  static Dataset load_piped(const std::string& content) {
+    std::signal(SIGPIPE, SIG_IGN);  // should the reader stop early, the writer gets EPIPE
+    int fds[2];
+    if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
+    std::thread writer([&content, w = fds[1]] {
+      for (std::size_t done = 0; done < content.size();) {
+        const std::size_t piece = done < 8 ? 1 : std::min<std::size_t>(content.size() - done, 4096);
+        const ssize_t n = ::write(w, content.data() + done, piece);
+        if (n <= 0) break;
+        done += static_cast<std::size_t>(n);
+      }
+      ::close(w);
+    });
+    const auto finish = [&] {
+      ::close(fds[0]);
+      writer.join();
+    };
+    try {
+      Dataset d = load_dataset_csv("/dev/fd/" + std::to_string(fds[0]));
+      finish();
+      return d;
+    } catch (...) {
+      finish();
+      throw;
+    }
   }
 
   // The InputError that loading `path` throws, or a test failure when it loads.
@@ -209,6 +243,27 @@ TEST_F(DatasetCsv, LastLineWithoutNewlineAccepted) {
   const Dataset d = load_dataset_csv(write("v_x,omega,N,R,T_x\n1,2,3,4,5"));
   ASSERT_EQ(d.rows(), 1u);
   EXPECT_EQ(d.value[0][0], 5.0);
+}
+
+// A pipe can be read once only: the encoding check looks at the reader's first bytes instead of
+// opening the input again, so the header is still there for the reader.
+TEST_F(DatasetCsv, PipeReadWithItsHeader) {
+  std::string rows;
+  for (int i = 1; i <= 5000; ++i) rows += std::to_string(i) + ",2,2000,0.05,7\n";
+  const Dataset d = load_piped("\xEF\xBB\xBFv_x,omega,N,R,T_x\n" + rows);
+  ASSERT_EQ(d.rows(), 5000u);
+  EXPECT_EQ(d.v_x.front(), 1.0);
+  EXPECT_EQ(d.v_x.back(), 5000.0);
+  EXPECT_EQ(d.line.back(), 5001u);
+}
+
+TEST_F(DatasetCsv, CompressedDataThroughAPipeIsNamed) {
+  try {
+    load_piped(std::string("\x1F\x8B\x08\x00\x00\x00\x00\x00\x00\x03", 10) + std::string(200, 'x'));
+    ADD_FAILURE() << "gzip data was read";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(Contains(e.what(), "gzip")) << e.what();
+  }
 }
 
 TEST_F(DatasetCsv, UnknownExtraColumnsIgnored) {

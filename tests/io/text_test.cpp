@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <charconv>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <random>
 #include <string>
 
 namespace frictionid::text {
@@ -15,6 +19,63 @@ TEST(ParseDoubleStrict, ReturnsNullOnSuccessAndReasonOnFailure) {
   EXPECT_EQ(v, 2.5);
   EXPECT_NE(parse_double_strict("2.5 ", v), nullptr);  // no trimming at this level
   EXPECT_STREQ(parse_double_strict("", v), "empty");
+}
+
+// Short decimals take a fast path of their own; they must read bit for bit as from_chars reads
+// them, the sign of a zero and the rounding of the last digit included.
+TEST(ParseDoubleStrict, ShortDecimalsReadBitIdenticalToFromChars) {
+  const auto expect_as_from_chars = [](const std::string& text) {
+    double expected = 0, got = 0;
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), expected);
+    ASSERT_TRUE(ec == std::errc() && ptr == text.data() + text.size()) << text;
+    ASSERT_EQ(parse_double_strict(text, got), nullptr) << text;
+    std::uint64_t a, b;
+    std::memcpy(&a, &expected, sizeof a);
+    std::memcpy(&b, &got, sizeof b);
+    ASSERT_EQ(a, b) << text;
+  };
+  for (const char* text : {"0",
+                           "-0",
+                           "0.0",
+                           "-0.000",
+                           "7",
+                           "2000",
+                           "-2",
+                           "00012",
+                           "0.05",
+                           "-1.25",
+                           "5.",
+                           ".5",
+                           "-.5",
+                           "0.1",
+                           "0.3",
+                           "1.7976931348623157",
+                           "9007199254740992",
+                           "9007199254740993",
+                           "900719925474099.3",
+                           "0.9007199254740993",
+                           "123456789012345678",
+                           "1234567890123456789",
+                           "12345678901234567890",
+                           "0.000000000000000001",
+                           "0.0000000000000000001"})
+    expect_as_from_chars(text);
+  std::mt19937_64 rng(5);
+  for (int i = 0; i < 200000; ++i) {
+    std::string text = std::to_string(rng() >> (rng() % 64));
+    const std::size_t after_point = rng() % 20;
+    if (after_point > 0 && after_point <= text.size())
+      text.insert(text.size() - after_point, 1, '.');
+    if (rng() % 2) text.insert(0, 1, '-');
+    expect_as_from_chars(text);
+  }
+  double v = 0;
+  EXPECT_STREQ(parse_double_strict("1.2.3", v), "unexpected characters after the number");
+  EXPECT_STREQ(parse_double_strict("12a", v), "unexpected characters after the number");
+  EXPECT_STREQ(parse_double_strict(".", v), "not a number");
+  EXPECT_STREQ(parse_double_strict("-", v), "not a number");
+  EXPECT_EQ(parse_double_strict("+7", v), nullptr);
+  EXPECT_EQ(v, 7.0);
 }
 
 TEST(Trim, RemovesSpacesAndTabsAtBothEndsOnly) {
