@@ -6,8 +6,10 @@ Re-implements, in vectorised numpy, exactly what frictionid does for `fit --mode
   * the seed model for any slip direction, as include/frictionid/model/approximants.hpp writes it (same
     small/large-eps branches, same tilt stand-ins, shape constants from the pressure law's
     moments as in approximant_shape() and law_moments());
-  * the whitening of src/identify/fitter.cpp: residual = (model - measured)/scale per channel,
-    scale = RMS of that channel's measured values (the data must have no sigma_* columns);
+  * a fixed whitening: residual = (model - measured)/scale per channel, scale = RMS of that
+    channel's measured values (the data must have no sigma_* columns). frictionid estimates its
+    noise model by default; run.sh gives it the same scales as sigma columns (`with-sigma`) and
+    `--noise-model columns`, so that both solve the same least-squares problem;
   * the parameters f, kappa, h, a, b, m and frictionid's default bounds;
   * cost = 1/2 sum r^2 (what Ceres and least_squares both report).
 
@@ -15,6 +17,8 @@ Usage:
   fit_scipy.py fit DATA.csv --param f=..,kappa=..,h=..,a=..,b=..,m=.. [--tol X] [--json OUT]
       least_squares(method='trf', x_scale='jac', jac='2-point') from the given start; prints the
       wall time of the least_squares call only, the final cost, nfev and the parameters.
+  fit_scipy.py with-sigma DATA.csv OUT.csv
+      writes DATA with a sigma_<channel> column per channel: the scale `fit` whitens by.
   fit_scipy.py check DATA.csv PRED.csv --param ...
       compares this model's predictions for DATA's kinematics with the *_model columns that
       `frictionid eval --model seed --input DATA.csv --output PRED.csv --param ...` wrote;
@@ -193,6 +197,33 @@ def cmd_check(args):
     return 0 if ok else 1
 
 
+def channel_scales(d):
+    """(index, name, measured mask, scale) of every measured channel; scale = RMS of its values."""
+    out = []
+    for ci, c in enumerate(CHANNELS):
+        if c not in d:
+            continue
+        y = d[c]
+        ok = np.isfinite(y)
+        if not ok.any():
+            continue
+        rms = math.sqrt(float(np.sum(y[ok] ** 2)) / int(ok.sum()))
+        out.append((ci, c, ok, rms if rms > 0.0 else 1.0))
+    return out
+
+
+def cmd_with_sigma(args):
+    scales = channel_scales(read_csv(args.data))
+    extra = "".join(f",sigma_{c}" for _, c, _, _ in scales)
+    values = "".join(f",{s!r}" for _, _, _, s in scales)
+    with open(args.data) as src, open(args.out, "w") as dst:
+        dst.write(src.readline().rstrip("\n") + extra + "\n")
+        for line in src:
+            if line.strip():
+                dst.write(line.rstrip("\n") + values + "\n")
+    return 0
+
+
 def cmd_fit(args):
     d = read_csv(args.data)
     if any(c.startswith("sigma_") for c in d):
@@ -204,17 +235,10 @@ def cmd_fit(args):
     # Channels present in the file, canonical order; a missing cell (NaN) holds residual 0 as in
     # residuals.hpp. Scale = RMS of the measured values (fitter.cpp).
     chans, meas, inv_scale, present = [], [], [], []
-    for ci, c in enumerate(CHANNELS):
-        if c not in d:
-            continue
-        y = d[c]
-        ok = np.isfinite(y)
-        if not ok.any():
-            continue
-        rms = math.sqrt(float(np.sum(y[ok] ** 2)) / int(ok.sum()))
+    for ci, c, ok, scale in channel_scales(d):
         chans.append(ci)
-        meas.append(np.where(ok, y, 0.0))
-        inv_scale.append(1.0 / (rms if rms > 0.0 else 1.0))
+        meas.append(np.where(ok, d[c], 0.0))
+        inv_scale.append(1.0 / scale)
         present.append(ok)
     all_present = all(p.all() for p in present)
     n = len(k.eps)
@@ -272,8 +296,11 @@ def main():
     c.add_argument("--param", required=True)
     c.add_argument("--pressure", default="hertz")
     c.add_argument("--rtol", type=float, default=1e-12)
+    w = sub.add_parser("with-sigma", help="the data with the fit's scales as sigma columns")
+    w.add_argument("data")
+    w.add_argument("out")
     args = ap.parse_args()
-    return cmd_check(args) if args.cmd == "check" else cmd_fit(args)
+    return {"check": cmd_check, "fit": cmd_fit, "with-sigma": cmd_with_sigma}[args.cmd](args)
 
 
 if __name__ == "__main__":

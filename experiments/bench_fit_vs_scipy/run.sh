@@ -8,7 +8,10 @@
 # 1. For rows in 1e3 1e4 1e5 1e6: generates seed/Hertz data with 1 % noise, then alternates,
 #    REPS times: frictionid's local stage alone (--no-global --param START --starts 1) on every
 #    core (the default) and on one thread, the full pipeline (global stage + 4 local fits on
-#    the subsample + the refinement on all rows), and least_squares from START.
+#    the subsample + the refinement on all rows), and least_squares from START. frictionid
+#    reads the data with the scales least_squares whitens by as sigma columns
+#    (fit_scipy.py with-sigma) and --noise-model columns: the same least-squares problem, where
+#    its default would estimate a noise model and refit (a different problem).
 # 2. Writes runs.csv (every run), results.csv and results.md (medians per size) and results.svg
 #    (log-log time vs rows) next to this script; scratch in out/ (git-ignored).
 # Runs one at a time; wall times depend on the machine's load (recorded in results.md).
@@ -107,15 +110,17 @@ for n in "${ROWS[@]}"; do
   data="$out/data/rows$n.csv"
   "$bin" generate "${MODEL[@]}" --param "$TRUTH" --rows "$n" --noise 0.01 --seed 3 \
     --output "$data" > /dev/null 2>&1
+  sdata="$out/data/rows${n}_sigma.csv"
+  "$py" "$here/fit_scipy.py" with-sigma "$data" "$sdata"
   reps=$REPS
   (( n <= 100000 )) || reps=$REPS_LARGE
   scipy_on=1
   for (( rep = 1; rep <= reps; rep++ )); do
-    run "$n" "$rep" local "$bin" fit "$data" "${MODEL[@]}" --no-global --param "$START" \
-      --starts 1 --report report
-    run "$n" "$rep" local1 "$bin" fit "$data" "${MODEL[@]}" --no-global --param "$START" \
-      --starts 1 --threads 1 --report report
-    run "$n" "$rep" full "$bin" fit "$data" "${MODEL[@]}" --report report
+    run "$n" "$rep" local "$bin" fit "$sdata" "${MODEL[@]}" --noise-model columns \
+      --no-global --param "$START" --starts 1 --report report
+    run "$n" "$rep" local1 "$bin" fit "$sdata" "${MODEL[@]}" --noise-model columns \
+      --no-global --param "$START" --starts 1 --threads 1 --report report
+    run "$n" "$rep" full "$bin" fit "$sdata" "${MODEL[@]}" --noise-model columns --report report
     if (( scipy_on )); then
       run "$n" "$rep" scipy "$py" "$here/fit_scipy.py" fit "$data" --param "$START" \
         --aligned-only --json result.json
