@@ -31,6 +31,7 @@
 
 #include <frictionid/fitter.hpp>
 #include <frictionid/synthetic_data.hpp>
+#include "identify/noise_model.hpp"
 #include "identify/statistics.hpp"
 
 namespace {
@@ -50,22 +51,6 @@ const NoiseCondition kConditions[] = {
     {"absolute", {0.0, 0.0, 0.0, 0.0}, {0.01, 0.03, 0.02, 0.005}},
     {"affine", {0.01, 0.02, 0.015, 0.005}, {0.005, 0.01, 0.01, 0.002}},
 };
-
-const char* noise_model_name(NoiseModelKind k) {
-  switch (k) {
-    case NoiseModelKind::Auto:
-      return "auto";
-    case NoiseModelKind::Constant:
-      return "constant";
-    case NoiseModelKind::Relative:
-      return "relative";
-    case NoiseModelKind::Affine:
-      return "affine";
-    case NoiseModelKind::Columns:
-      return "columns";
-  }
-  return "?";
-}
 
 struct Cell {
   int condition = 0;

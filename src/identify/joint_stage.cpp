@@ -158,7 +158,8 @@ JointOutcome joint_local_fit(const JointProblem& p, FitObserver* observer) {
       problem.SetParameterUpperBound(z.own[r].data(), static_cast<int>(j), bound.upper);
     }
 
-  ceres::Solver::Options o;
+  // One thread: runs are spread over threads by the evaluation callback.
+  ceres::Solver::Options o = solver_options(s0);
   if (any_own) {
     // Eliminate the runs' own blocks first (group 0), then solve for the shared block.
     o.linear_solver_type = ceres::DENSE_SCHUR;
@@ -170,16 +171,7 @@ JointOutcome joint_local_fit(const JointProblem& p, FitObserver* observer) {
   } else {
     o.linear_solver_type = ceres::DENSE_QR;
   }
-  o.max_num_line_search_step_size_iterations = 0;
-  o.max_num_iterations = s0.max_iterations;
-  o.function_tolerance = s0.function_tolerance;
-  o.gradient_tolerance = s0.gradient_tolerance;
-  o.parameter_tolerance = s0.parameter_tolerance;
-  o.num_threads = 1;  // runs are spread over threads by the evaluation callback
-  o.logging_type = ceres::SILENT;
-  o.minimizer_progress_to_stdout = false;
   SolverProgress progress(observer, 0, 0, s0.max_iterations);
-  quiet_solver_logging();
   o.callbacks.push_back(&progress);
   ceres::Solver::Summary summary;
   ceres::Solve(o, &problem, &summary);

@@ -351,21 +351,11 @@ LocalOutcome local_fit(const LocalProblem& p, const ParamVector& start, FitObser
     problem.SetParameterLowerBound(z.data(), static_cast<int>(j), s.params[p.free[j]].lower);
     problem.SetParameterUpperBound(z.data(), static_cast<int>(j), s.params[p.free[j]].upper);
   }
-  ceres::Solver::Options o;
+  // One thread: rows are spread over threads inside the block (row_chunks.hpp).
+  ceres::Solver::Options o = solver_options(s);
   // The block is (k+1) x k: a dense QR of it costs nothing next to one pass over the rows.
   o.linear_solver_type = ceres::DENSE_QR;
-  // Ceres' projected line search under bounds costs one more Jacobian per iteration; bounds
-  // stay enforced by projecting the trust-region step, so skip it.
-  o.max_num_line_search_step_size_iterations = 0;
-  o.max_num_iterations = s.max_iterations;
-  o.function_tolerance = s.function_tolerance;
-  o.gradient_tolerance = s.gradient_tolerance;
-  o.parameter_tolerance = s.parameter_tolerance;
-  o.num_threads = 1;  // rows are spread over threads inside the block (row_chunks.hpp)
-  o.logging_type = ceres::SILENT;
-  o.minimizer_progress_to_stdout = false;
   SolverProgress cb(observer, start_index, starts, s.max_iterations);
-  quiet_solver_logging();
   o.callbacks.push_back(&cb);
   ceres::Solver::Summary summary;
   ceres::Solve(o, &problem, &summary);

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <ceres/iteration_callback.h>
+#include <ceres/solver.h>
 
 #include <frictionid/fit_observer.hpp>
+#include <frictionid/fit_settings.hpp>
 
 namespace frictionid {
 
@@ -26,5 +28,23 @@ class SolverProgress final : public ceres::IterationCallback {
 // evaluating the ResidualBlock ...", one per failed step) on stderr, while every failure reaches
 // the caller as a FitError or a warning in words; such a host gets only fatal messages.
 void quiet_solver_logging();
+
+// Levenberg-Marquardt with the fit's limits and tolerances, quiet, on the calling thread (the
+// stages spread their own work over threads); the caller picks the linear solver and adds the
+// callbacks. Ceres' projected line search under bounds would cost one more Jacobian per
+// iteration; bounds stay enforced by projecting the trust-region step, so it is off.
+inline ceres::Solver::Options solver_options(const FitSettings& s) {
+  quiet_solver_logging();
+  ceres::Solver::Options o;
+  o.max_num_line_search_step_size_iterations = 0;
+  o.max_num_iterations = s.max_iterations;
+  o.function_tolerance = s.function_tolerance;
+  o.gradient_tolerance = s.gradient_tolerance;
+  o.parameter_tolerance = s.parameter_tolerance;
+  o.num_threads = 1;
+  o.logging_type = ceres::SILENT;
+  o.minimizer_progress_to_stdout = false;
+  return o;
+}
 
 }  // namespace frictionid

@@ -15,6 +15,7 @@
 #include <frictionid/parameters.hpp>
 #include "io/html_page.hpp"
 #include "io/report_parts.hpp"
+#include "io/summary_columns.hpp"
 #include "io/svg_plot.hpp"
 
 namespace frictionid {
@@ -73,32 +74,6 @@ constexpr const char* kSortScript = R"(
 
 void line(std::string& h, const std::string& s) {
   (h += s) += '\n';
-}
-
-// Names in order of first appearance over the rows.
-template <class Items, class Name>
-std::vector<std::string> union_of(const std::vector<SummaryRow>& rows, Items items, Name name) {
-  std::vector<std::string> out;
-  for (const auto& row : rows)
-    for (const auto& item : items(row))
-      if (std::find(out.begin(), out.end(), name(item)) == out.end()) out.push_back(name(item));
-  return out;
-}
-
-std::vector<std::string> parameter_names(const std::vector<SummaryRow>& rows) {
-  auto names = union_of(
-      rows, [](const SummaryRow& r) { return r.parameters; },
-      [](const SummaryParameter& p) { return p.name; });
-  std::stable_sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
-    return param_index(a).value_or(kParamCount) < param_index(b).value_or(kParamCount);
-  });
-  return names;
-}
-
-std::vector<std::string> covariate_names(const std::vector<SummaryRow>& rows) {
-  return union_of(
-      rows, [](const SummaryRow& r) { return r.covariates; },
-      [](const Covariate& c) { return c.name; });
 }
 
 const SummaryParameter* find_parameter(const SummaryRow& row, const std::string& name) {
@@ -160,8 +135,8 @@ std::string join(const std::vector<std::string>& items, const char* separator) {
 
 void runs_section(std::string& h, const std::vector<SummaryRow>& rows,
                   const SummaryHtmlOptions& o) {
-  const auto params = parameter_names(rows);
-  const auto covariates = covariate_names(rows);
+  const auto params = summary_parameter_names(rows);
+  const auto covariates = summary_covariate_names(rows);
   line(h, "<h2 id=\"runs-heading\">Runs</h2>");
   line(h, "<div class=\"table-scroll\"><table class=\"runs\" id=\"runs\"><thead><tr>");
   std::string head =
@@ -315,7 +290,7 @@ Trends trend_runs(const std::vector<SummaryRow>& rows, const std::string& x) {
   if (!missing.empty())
     t.notes.push_back(fmt::format("Left out, no value of {}: {}.", escape(x), join(missing, ", ")));
 
-  t.grouping = grouping_columns(t.runs, covariate_names(rows), x);
+  t.grouping = grouping_columns(t.runs, summary_covariate_names(rows), x);
   std::vector<std::string> labels;
   for (auto& r : t.runs) {
     std::vector<std::string> parts;
@@ -450,7 +425,7 @@ std::string trend_figure(const Trends& t, const std::string& param, const std::s
 
 void trends_section(std::string& h, const std::vector<SummaryRow>& rows, const std::string& x) {
   line(h, fmt::format("<h2 id=\"trends\">Trends against {}</h2>", escape(x)));
-  const auto covariates = covariate_names(rows);
+  const auto covariates = summary_covariate_names(rows);
   if (std::find(covariates.begin(), covariates.end(), x) == covariates.end()) {
     line(h, fmt::format("<p class=\"note\">No run has a covariate named {}; the covariates are: "
                         "{}. Nothing is plotted.</p>",
@@ -467,7 +442,7 @@ void trends_section(std::string& h, const std::vector<SummaryRow>& rows, const s
   }
   std::vector<SummaryRow> plotted;
   for (const auto& r : t.runs) plotted.push_back(*r.row);
-  for (const auto& param : parameter_names(plotted)) {
+  for (const auto& param : summary_parameter_names(plotted)) {
     const std::string figure = trend_figure(t, param, x);
     if (!figure.empty()) line(h, figure);
   }

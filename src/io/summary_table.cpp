@@ -7,6 +7,7 @@
 
 #include <frictionid/parameters.hpp>
 #include "io/json_number.hpp"
+#include "io/summary_columns.hpp"
 
 namespace frictionid {
 
@@ -188,15 +189,24 @@ SummaryRow summary_row_from_json(const nlohmann::ordered_json& j) {
   }
 }
 
-std::string summary_csv(const std::vector<SummaryRow>& rows) {
-  auto params = union_of(
+std::vector<std::string> summary_parameter_names(const std::vector<SummaryRow>& rows) {
+  auto names = union_of(
       rows, [](const SummaryRow& r) { return r.parameters; },
       [](const SummaryParameter& p) { return p.name; });
-  // Canonical parameter order (f, kappa, h, ...), whatever order the rows came in.
-  std::stable_sort(params.begin(), params.end(), [](const std::string& a, const std::string& b) {
-    const auto ia = param_index(a), ib = param_index(b);
-    return ia.value_or(kParamCount) < ib.value_or(kParamCount);
+  std::stable_sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
+    return param_index(a).value_or(kParamCount) < param_index(b).value_or(kParamCount);
   });
+  return names;
+}
+
+std::vector<std::string> summary_covariate_names(const std::vector<SummaryRow>& rows) {
+  return union_of(
+      rows, [](const SummaryRow& r) { return r.covariates; },
+      [](const Covariate& c) { return c.name; });
+}
+
+std::string summary_csv(const std::vector<SummaryRow>& rows) {
+  const auto params = summary_parameter_names(rows);
   auto channels = union_of(
       rows, [](const SummaryRow& r) { return r.noise; },
       [](const SummaryNoise& n) { return n.channel; });
@@ -209,9 +219,7 @@ std::string summary_csv(const std::vector<SummaryRow>& rows) {
                      };
                      return index(a) < index(b);
                    });
-  const auto covariates = union_of(
-      rows, [](const SummaryRow& r) { return r.covariates; },
-      [](const Covariate& c) { return c.name; });
+  const auto covariates = summary_covariate_names(rows);
 
   std::vector<std::string> header = {"label", "status", "rows"};
   for (const auto& p : params)

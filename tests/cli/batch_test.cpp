@@ -21,6 +21,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+#include "support/matched_digits.hpp"
+#include "support/run_command.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace {
@@ -29,21 +31,10 @@ namespace fs = std::filesystem;
 using frictionid::test::read_file;
 using frictionid::test::ScratchDir;
 
-struct RunResult {
-  int code;
-  std::string out;  // stdout and stderr together
-};
+using RunResult = frictionid::test::CommandResult;
 
 RunResult run(const std::string& args) {
-  const char* exe = std::getenv("FRICTIONID_EXE");
-  if (!exe) return {-1, "FRICTIONID_EXE not set"};
-  FILE* p = popen((std::string(exe) + " " + args + " 2>&1").c_str(), "r");
-  std::string out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return frictionid::test::run_frictionid(args);
 }
 
 // summary.csv as label -> column -> cell (cells may be double-quoted).
@@ -484,10 +475,7 @@ void make_load_runs(const ScratchDir& d) {
   }
 }
 
-double matched_digits(double estimate, double truth) {
-  const double rel = std::fabs(estimate - truth) / std::fabs(truth);
-  return rel == 0.0 ? 17.0 : -std::log10(rel);
-}
+using frictionid::test::matched_digits;
 
 TEST(Batch, SharedKappaAndHAreOneValueForEveryRunWhileEachRunKeepsItsOwnF) {
   const ScratchDir d("shared");

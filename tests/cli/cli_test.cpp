@@ -14,27 +14,16 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include "support/run_command.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int code;
-  std::string out;  // stdout and stderr together
-};
+using RunResult = frictionid::test::CommandResult;
 
 RunResult run(const std::string& args) {
-  const char* exe = std::getenv("FRICTIONID_EXE");
-  if (!exe) return {-1, "FRICTIONID_EXE not set"};
-  const std::string cmd = std::string(exe) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return frictionid::test::run_frictionid(args);
 }
 
 fs::path temp_dir(const std::string& name) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "support/memory_cap.hpp"
+#include "support/run_command.hpp"
 
 namespace {
 
@@ -19,14 +20,8 @@ TEST(InputLimits, APressureTableWithoutEndIsRejectedAtTheSizeLimit) {
   const std::string cmd = frictionid::test::memory_cap_prefix(400) + "exec '" + std::string(exe) +
                           "' coefficients --pressure table:/dev/zero 2>&1 >/dev/null";
   const auto t0 = std::chrono::steady_clock::now();
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  std::string err;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) err.append(buf, n);
-  const int status = pclose(p);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << err;
+  const auto [code, err] = frictionid::test::run_command(cmd);
+  EXPECT_EQ(code, 2) << err;
   EXPECT_NE(err.find("/dev/zero: is larger than 16 MiB"), std::string::npos) << err;
   EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(20));
 }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "support/memory_cap.hpp"
+#include "support/run_command.hpp"
 
 namespace {
 
@@ -30,15 +31,8 @@ Result run(const std::string& args) {
   const char* exe = std::getenv("FRICTIONID_EXE");
   const std::string cmd = frictionid::test::memory_cap_prefix(1000) + "exec '" +
                           std::string(exe ? exe : "frictionid") + "' " + args + " 2>&1 >/dev/null";
-  FILE* p = popen(cmd.c_str(), "r");
-  Result r{-1, ""};
-  if (!p) return r;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.err.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  const auto r = frictionid::test::run_command(cmd);
+  return {r.code, r.out};
 }
 
 class IntegerOptions : public ::testing::Test {

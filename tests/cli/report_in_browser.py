@@ -37,10 +37,12 @@ WINDOW = (1200, 1800)
 
 
 def chromium():
+    """The browser's path, or None after printing why the test is skipped (exit code 77)."""
     for name in ("chromium", "chromium-browser", "google-chrome"):
         path = shutil.which(name)
         if path:
             return path
+    print("SKIPPED: Chromium is not installed (apt-get install chromium, or scripts/install-deps)")
     return None
 
 
@@ -204,8 +206,6 @@ def main():
 
     browser = chromium()
     if browser is None:
-        print("SKIPPED: Chromium is not installed (apt-get install chromium, or "
-              "scripts/install-deps)")
         return 77
 
     failures = []

@@ -9,26 +9,16 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include "support/run_command.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int code;
-  std::string out;  // stdout and stderr together
-};
+using RunResult = frictionid::test::CommandResult;
 
 RunResult run(const std::string& args) {
-  const char* exe = std::getenv("FRICTIONID_EXE");
-  if (!exe) return {-1, "FRICTIONID_EXE not set"};
-  FILE* p = popen((std::string(exe) + " " + args + " 2>&1").c_str(), "r");
-  std::string out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return frictionid::test::run_frictionid(args);
 }
 
 std::string slurp(const fs::path& p) {

@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <string>
 
+#include "support/run_command.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -37,15 +39,8 @@ class StartAndBounds : public ::testing::Test {
         "exec '" + std::string(std::getenv("FRICTIONID_EXE")) + "' fit '" +
         (fs::path(FRICTIONID_SOURCE_DIR) / "data" / "example_hertz.csv").string() +
         "' --model seed --report '" + (dir_ / "rep").string() + "' " + extra + " 2>&1 >/dev/null";
-    FILE* p = popen(cmd.c_str(), "r");
-    Result r{-1, ""};
-    if (!p) return r;
-    char buf[4096];
-    std::size_t n;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.err.append(buf, n);
-    const int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
+    const auto r = frictionid::test::run_command(cmd);
+    return {r.code, r.out};
   }
   void expect_error(const std::string& extra, const std::string& says) {
     const Result r = fit(extra);

@@ -6,17 +6,14 @@
 
 #include <frictionid/io/report_writer.hpp>
 #include <frictionid/synthetic_data.hpp>
+#include "support/matched_digits.hpp"
 
 namespace frictionid {
 namespace {
 
 using Law = model::PressureLaw<double>;
 
-// Matched digits as Ceres' examples/nist.cc scores them: -log10 of the relative error.
-double matched_digits(double estimate, double truth) {
-  const double rel = std::fabs(estimate - truth) / std::fabs(truth);
-  return rel == 0.0 ? 17.0 : -std::log10(rel);
-}
+using frictionid::test::matched_digits;
 
 std::array<double, kParamCount> truth_params(const Law& law) {
   auto p = default_parameters(law, 0.85, 1.3, 0.12);

@@ -10,16 +10,14 @@
 
 #include "identify/fitted_run.hpp"
 #include "identify/joint_stage.hpp"
+#include "support/matched_digits.hpp"
 
 namespace frictionid {
 namespace {
 
 using Law = model::PressureLaw<double>;
 
-double matched_digits(double estimate, double truth) {
-  const double rel = std::fabs(estimate - truth) / std::fabs(truth);
-  return rel == 0.0 ? 17.0 : -std::log10(rel);
-}
+using frictionid::test::matched_digits;
 
 // A campaign of runs at several loads that share kappa and h, each with its own friction f
 // (the common physical case: load-dependent friction on one tire).

@@ -8,6 +8,8 @@ import subprocess
 
 import pytest
 
+import frictionid
+
 
 @pytest.fixture(scope="session")
 def exe() -> str:
@@ -83,3 +85,13 @@ def campaign(exe, tmp_path_factory):
                         str(directory / f"load_{load}.csv")], check=True, capture_output=True)
     (directory / "bad.csv").write_text("not,a,dataset\n1,2,3\n")
     return directory
+
+
+@pytest.fixture(scope="session")
+def second_long_fit():
+    """A fit of about a second on one core, as a function of no arguments (the GIL tests): the
+    exact model with the pressure exponent free."""
+    rows = frictionid.generate("exact", "power:1.5", {"f": 0.8, "kappa": 1.2, "h": 0.05},
+                               rows=600, noise=0.01, seed=2)
+    return lambda: frictionid.fit(rows, model="exact", pressure="power:1", threads=1, starts=2,
+                                  global_evaluations=1000)

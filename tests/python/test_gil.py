@@ -4,29 +4,13 @@ fits in parallel is in test_gil_parallel_fits.py)."""
 import threading
 import time
 
-import pytest
 
-import frictionid
-
-
-@pytest.fixture(scope="module")
-def rows():
-    # The exact model with the pressure exponent free: a fit of about a second on one core.
-    return frictionid.generate("exact", "power:1.5", {"f": 0.8, "kappa": 1.2, "h": 0.05},
-                               rows=600, noise=0.01, seed=2)
-
-
-def one_fit(rows):
-    return frictionid.fit(rows, model="exact", pressure="power:1", threads=1, starts=2,
-                          global_evaluations=1000)
-
-
-def test_python_threads_keep_running_during_a_fit(rows):
+def test_python_threads_keep_running_during_a_fit(second_long_fit):
     done = threading.Event()
     box = {}
 
     def work():
-        box["result"] = one_fit(rows)
+        box["result"] = second_long_fit()
         done.set()
 
     worker = threading.Thread(target=work)
