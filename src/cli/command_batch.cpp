@@ -166,19 +166,20 @@ int run_batch(const BatchOptions& o) {
   if (o.warm_start && !pending.empty() && runs.size() > 1) {
     const BatchContext alone{o, context.dir, o.fit.threads, interrupted};
     std::optional<FitResult> first;
+    // Interrupted, the workers stop at once and the batch ends as any interrupted batch does.
     if (pending.front() == 0) {
       SummaryRow row = fit_run(alone, runs[0], nullptr, &first);
-      if (interrupted->load()) return kExitInterrupted;
-      journal.record(runs[0].key, row);
-      ++fitted;
-      if (!row.ok) ++failed;
-      rows[0] = std::move(row);
-      next = 1;
+      if (!interrupted->load()) {
+        journal.record(runs[0].key, row);
+        ++fitted;
+        if (!row.ok) ++failed;
+        rows[0] = std::move(row);
+        next = 1;
+      }
     } else {
       TerminalObserver observer(interrupted, /*progress=*/false);
       fit_batch_run(runs[0], o.fit.threads, &observer,
                     [&](const FitResult& r, const Dataset&) { first = r; });
-      if (interrupted->load()) return kExitInterrupted;
     }
     if (first) warm = warm_start_from(runs[0].label, *first);
   }
