@@ -20,6 +20,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -137,23 +138,41 @@ struct JetPasses {
     return std::all_of(good.begin(), good.end(), [](char g) { return g != 0; });
   }
 
+  // The Gram matrix of [J r] summed row by row as the residuals come, with no m x (k+1) block in
+  // between: one rank-1 update per residual (the full square: it vectorises, where a triangle
+  // would not).
   static bool normal_equations(const LocalProblem& p, const ParamVector& x, NormalEquations& ne) {
-    std::vector<Gram> gram(problem_chunks(p));
-    std::vector<double> sum_sq;
-    const bool ok = pass(p, x, sum_sq, [&](std::size_t c, const Block& b) {
-      // Column dot products: 7 columns are too narrow for a blocked matrix product to pay.
-      for (int a = 0; a <= N; ++a)
-        for (int k = 0; k <= a; ++k) gram[c](a, k) = gram[c](k, a) = b.col(a).dot(b.col(k));
+    const FitSettings& s = *p.settings;
+    const auto pj = seeded(p, x);
+    const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true),
+                                    p.quadrature);
+    const std::size_t chunks = problem_chunks(p);
+    std::vector<Gram> gram(chunks);
+    std::vector<char> good(chunks, 1);
+    const std::size_t nc = p.rows.channels.size();
+    for_each_chunk(chunks, p.threads, [&](std::size_t c) {
+      Gram g = Gram::Zero();
+      Jet buf[kChannelCount];
+      Eigen::Matrix<double, N + 1, 1> v;
+      for (std::size_t i = chunk_begin(p, c); i < chunk_end(p, c); ++i) {
+        if (!row_residuals(p.rows, model, s.loss, s.loss_scale, i, buf)) {
+          good[c] = 0;
+          return;
+        }
+        for (std::size_t j = 0; j < nc; ++j) {
+          v.template head<N>() = buf[j].v;
+          v[N] = buf[j].a;
+          g.noalias() += v * v.transpose();
+        }
+      }
+      gram[c] = g;
     });
-    if (!ok) return false;
+    if (!std::all_of(good.begin(), good.end(), [](char ok) { return ok != 0; })) return false;
     Gram total = Gram::Zero();
-    ne.rtr = 0.0;
-    for (std::size_t c = 0; c < gram.size(); ++c) {
-      total += gram[c];
-      ne.rtr += sum_sq[c];
-    }
+    for (std::size_t c = 0; c < gram.size(); ++c) total += gram[c];
     ne.jtj = total.template topLeftCorner<N, N>();
     ne.jtr = total.template topRightCorner<N, 1>();
+    ne.rtr = total(N, N);
     return true;
   }
 
@@ -213,6 +232,13 @@ struct JetPasses {
 };
 
 // The whole problem as one residual block of N + 1 residuals (see the top of this file).
+//
+// Ceres evaluates the cost alone at each trial point and, when it accepts the step, asks for the
+// Jacobian at that same point. Near a minimum nearly every step is accepted, so the trial cost
+// comes from the autodiff pass, whose normal equations are kept for the request that follows:
+// one pass per accepted step instead of two. After a rejected step (no request followed) the
+// next trial costs a plain-double pass again, which is half as dear. Both passes compute the
+// residuals with the same operations, so the cost Ceres sees does not depend on which ran.
 template <int N>
 class NormalEquationsCost final : public ceres::CostFunction {
  public:
@@ -223,17 +249,28 @@ class NormalEquationsCost final : public ceres::CostFunction {
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
-    const ParamVector x = JetPasses<N>::with_free(p_, base_, parameters[0]);
-    if (jacobians == nullptr || jacobians[0] == nullptr) {
+    const double* z = parameters[0];
+    const ParamVector x = JetPasses<N>::with_free(p_, base_, z);
+    const bool wants_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
+    if (!wants_jacobian) {
+      // The previous trial was rejected if its normal equations are still unclaimed.
+      const bool last_accepted = !kept_;
+      kept_ = false;
+      if (last_accepted && JetPasses<N>::normal_equations(p_, x, kept_ne_)) {
+        std::copy(z, z + N, kept_z_.begin());
+        kept_ = true;
+        return cost_only(kept_ne_.rtr, residuals);
+      }
+      // Also where only a derivative was not finite: the cost alone decides a trial, as before.
       const double ss = sum_of_squares(p_, x);
       if (!std::isfinite(ss)) return false;
-      for (int j = 0; j < N; ++j) residuals[j] = 0.0;
-      residuals[N] = std::sqrt(ss);
-      return true;
+      return cost_only(ss, residuals);
     }
-    NormalEquations ne;
-    if (!JetPasses<N>::normal_equations(p_, x, ne)) return false;
-    const SquareRootForm f = square_root_form(ne);
+    NormalEquations fresh;
+    const bool reuse = kept_ && std::equal(z, z + N, kept_z_.begin());
+    kept_ = false;
+    if (!reuse && !JetPasses<N>::normal_equations(p_, x, fresh)) return false;
+    const SquareRootForm f = square_root_form(reuse ? kept_ne_ : fresh);
     for (int i = 0; i < N; ++i) residuals[i] = f.w[i];
     residuals[N] = f.rho;
     double* jac = jacobians[0];  // row-major (N + 1) x N
@@ -244,8 +281,18 @@ class NormalEquationsCost final : public ceres::CostFunction {
   }
 
  private:
+  static bool cost_only(double sum_sq, double* residuals) {
+    for (int j = 0; j < N; ++j) residuals[j] = 0.0;
+    residuals[N] = std::sqrt(sum_sq);
+    return true;
+  }
+
   const LocalProblem& p_;
   ParamVector base_;
+  // The normal equations of the last trial point, until Ceres asks for them or moves on.
+  mutable bool kept_ = false;
+  mutable std::array<double, N> kept_z_{};
+  mutable NormalEquations kept_ne_;
 };
 
 template <int N>

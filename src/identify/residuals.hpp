@@ -73,6 +73,10 @@ bool row_residuals(const ResidualRows& rows, const ModelEvaluator<T>& model, Los
   const Dataset& d = *rows.data;
   const std::size_t nc = rows.channels.size();
   const model::Kinematics k{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]};
+  // The weights first, all divisions together: they overlap each other and the model, where
+  // one per channel between the Jet operations would each stall them.
+  double w[kChannelCount];
+  for (std::size_t j = 0; j < nc; ++j) w[j] = rows.inverse_sigma(rows.channels[j], i);
   const model::Resultants<T> r = model(k);
   T s = T(0);
   for (std::size_t j = 0; j < nc; ++j) {
@@ -82,8 +86,8 @@ bool row_residuals(const ResidualRows& rows, const ModelEvaluator<T>& model, Los
                     : c == Channel::T_y ? r.T_y
                     : c == Channel::M_z ? r.M_z
                                         : r.M_roll;
-    const double w = rows.inverse_sigma(c, i);
-    row_out[j] = w == 0.0 ? T(0) : (pred - d.value[ci][i]) * w;
+    // Unmeasured (weight 0): the residual is held at 0, whatever the missing value holds.
+    row_out[j] = d.present[ci][i] ? (pred - d.value[ci][i]) * w[j] : T(0);
     if (loss != LossKind::None) s += row_out[j] * row_out[j];
   }
   if (loss != LossKind::None) {

@@ -126,6 +126,32 @@ TEST(LocalStage, ThreadCountDoesNotChangeASingleBit) {
   EXPECT_EQ(cost_one, problem_cost(f.problem, f.truth));
 }
 
+// Ceres takes a trial point's cost from either pass (local_stage.cpp keeps the autodiff pass's
+// normal equations for the Jacobian request that follows): they must agree to the last bit, with
+// sigma columns, unmeasured values and a robust loss on the way, or the trajectory would depend on
+// which pass ran.
+TEST(LocalStage, AutodiffPassGivesTheSameSumOfSquaresAsThePlainPassToTheBit) {
+  for (LossKind loss : {LossKind::None, LossKind::Cauchy}) {
+    Fixture f;
+    make(f, ModelKind::Seed, Law::hertz(), 3000, loss);
+    f.data.sigma[static_cast<int>(Channel::T_y)].assign(f.data.rows(), 0.0);
+    for (std::size_t i = 0; i < f.data.rows(); ++i)
+      f.data.sigma[static_cast<int>(Channel::T_y)][i] = 3.0 + 0.001 * static_cast<double>(i % 97);
+    for (std::size_t i = 0; i < f.data.rows(); i += 7) {
+      f.data.present[static_cast<int>(Channel::M_z)][i] = 0;
+      f.data.value[static_cast<int>(Channel::M_z)][i] = std::nan("");
+    }
+    ParamVector x = f.truth;
+    for (int i : f.problem.free) x[i] *= 1.02;
+    for (int threads : {1, 2}) {
+      f.problem.threads = threads;
+      NormalEquations ne;
+      ASSERT_TRUE(normal_equations(f.problem, x, ne));
+      EXPECT_EQ(ne.rtr, 2.0 * problem_cost(f.problem, x)) << threads;
+    }
+  }
+}
+
 TEST(LocalStage, LevenbergMarquardtReachesTheOptimumOfNoiseFreeRowsFromANearbyStart) {
   Fixture f;
   make(f, ModelKind::Seed, Law::hertz(), 1000, LossKind::None);
