@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <string>
 #if defined(__GLIBC__)
@@ -13,6 +14,7 @@
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/option_parsers.hpp"
+#include "io/huge_pages.hpp"
 #include "io/interruption.hpp"
 
 namespace {
@@ -247,6 +249,15 @@ void keep_large_blocks_in_the_heap() {
 #if defined(__GLIBC__)
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  // The heap's first 240 MiB ask for transparent huge pages: one fault per 2 MiB, where 4 KiB
+  // pages cost ~7000 faults (a quarter of the time) in a 1e5-row fit on a virtual machine. It is
+  // address space only: pages are committed as they are written, and stay with the heap after
+  // the free (below the trim threshold).
+  constexpr std::size_t kPrimed = std::size_t{240} << 20;  // below the mmap threshold
+  if (void* block = std::malloc(kPrimed)) {
+    frictionid::io_detail::advise_huge_pages(block, kPrimed);
+    std::free(block);
+  }
 #endif
 }
 
