@@ -3,22 +3,84 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace frictionid {
 namespace {
 
 constexpr double kTiny = 1e-300;
 
-// -2 log L (without 2 pi) and the BIC of noise n on the sample.
+// What the likelihood needs of a sample beyond its length, gathered in one pass: the closed
+// forms below then score the constant model and the affine model's bounds without a log per row.
+struct SampleSums {
+  double e2 = 0.0;           // sum e^2
+  std::size_t nonzero = 0;   // rows with y != 0
+  double log_y2 = 0.0;       // sum log y^2 over them
+  double e2_over_y2 = 0.0;   // sum e^2/y^2 over them
+  double zero_e2 = 0.0;      // sum e^2 over the rows with y = 0
+  double min_y2 = HUGE_VAL;  // smallest nonzero y^2
+};
+
+SampleSums sample_sums(const std::vector<double>& y, const std::vector<double>& e) {
+  SampleSums t;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    const double y2 = y[i] * y[i], e2 = e[i] * e[i];
+    t.e2 += e2;
+    if (y2 > 0.0) {
+      ++t.nonzero;
+      t.log_y2 += std::log(y2);
+      t.e2_over_y2 += e2 / y2;
+      t.min_y2 = std::min(t.min_y2, y2);
+    } else {
+      t.zero_e2 += e2;
+    }
+  }
+  return t;
+}
+
+// The variance sigma_i^2 of noise n at fitted value y (noise_model.hpp), in sample units (at
+// most 1 in magnitude: estimate_channel_noise divides by the largest, so nothing overflows).
+double variance(const ChannelNoise& n, double y) {
+  switch (n.kind) {
+    case NoiseModelKind::Relative: {
+      const double m = n.s_rel * std::max(std::fabs(y), n.floor);
+      return m * m;
+    }
+    case NoiseModelKind::Affine:
+      return n.s_abs * n.s_abs + (n.s_rel * y) * (n.s_rel * y);
+    default:
+      return n.s_abs * n.s_abs;
+  }
+}
+
+// -2 log L (without 2 pi) = sum log v_i + e_i^2/v_i, v_i = max(sigma_i^2, tiny), and the BIC.
+void set_score(ChannelNoise& n, double neg2_loglik, std::size_t rows, int parameters) {
+  n.neg2_loglik = neg2_loglik;
+  n.bic = neg2_loglik + parameters * std::log(static_cast<double>(rows));
+}
+
 void score(ChannelNoise& n, const std::vector<double>& y, const std::vector<double>& e,
            int parameters) {
   double s = 0.0;
   for (std::size_t i = 0; i < y.size(); ++i) {
-    const double v = std::max(noise_sigma(n, y[i]) * noise_sigma(n, y[i]), kTiny);
+    const double v = std::max(variance(n, y[i]), kTiny);
     s += std::log(v) + e[i] * e[i] / v;
   }
-  n.neg2_loglik = s;
-  n.bic = s + parameters * std::log(static_cast<double>(y.size()));
+  set_score(n, s, y.size(), parameters);
+}
+
+// The same sum where the variance is one constant a for every row.
+double constant_neg2_loglik(double a, std::size_t rows, const SampleSums& t) {
+  const double v = std::max(a, kTiny);
+  return static_cast<double>(rows) * std::log(v) + t.e2 / v;
+}
+
+// The same over the rows with y != 0 for v_i = b y_i^2 (the affine model with s_abs = 0);
+// nullopt where b y^2 would fall below tiny for some of them: only the sum row by row is exact.
+std::optional<double> proportional_neg2_loglik(double b, const SampleSums& t) {
+  if (t.nonzero == 0) return 0.0;
+  if (!(b * t.min_y2 >= kTiny)) return std::nullopt;
+  return static_cast<double>(t.nonzero) * std::log(b) + t.log_y2 + t.e2_over_y2 / b;
 }
 
 double mean_square(const std::vector<double>& v) {
@@ -30,11 +92,11 @@ double mean_square(const std::vector<double>& v) {
   return peak * peak * s / static_cast<double>(v.size());
 }
 
-ChannelNoise constant_noise(const std::vector<double>& y, const std::vector<double>& e) {
+ChannelNoise constant_noise(const std::vector<double>& e, const SampleSums& t) {
   ChannelNoise n;
   n.kind = NoiseModelKind::Constant;
   n.s_abs = std::sqrt(mean_square(e));
-  score(n, y, e, 1);
+  set_score(n, constant_neg2_loglik(n.s_abs * n.s_abs, e.size(), t), e.size(), 1);
   return n;
 }
 
@@ -54,15 +116,22 @@ ChannelNoise relative_noise(const std::vector<double>& y, const std::vector<doub
 
 // Fisher scoring of the Gaussian likelihood in (a, b) = (s_abs^2, s_rel^2): weighted least
 // squares of e^2 on (1, y^2) with weights 1/sigma^4, a and b kept >= 0 (an active bound drops to
-// the one-parameter model, which is then the affine model's estimate).
-ChannelNoise affine_noise(const std::vector<double>& y, const std::vector<double>& e) {
-  const ChannelNoise c = constant_noise(y, e);
-  double a = c.s_abs * c.s_abs, b = 0.0;
+// the one-parameter model, which is then the affine model's estimate). c and r: the constant
+// and relative estimates of the same sample, where it starts.
+ChannelNoise affine_noise(const std::vector<double>& y, const std::vector<double>& e,
+                          const ChannelNoise& c, const ChannelNoise& r, const SampleSums& t) {
   // Start halfway between the pure forms so that neither bound is active at the start.
-  const ChannelNoise r = relative_noise(y, e);
-  a *= 0.5;
-  b = 0.5 * r.s_rel * r.s_rel;
+  double a = 0.5 * c.s_abs * c.s_abs, b = 0.5 * r.s_rel * r.s_rel;
   const double ym2 = mean_square(y);
+  // -2 log L of the affine model on a bound (a = 0 or b = 0): closed forms where they are exact.
+  const auto bound_neg2_loglik = [&](double a_only, double b_only) {
+    if (b_only == 0.0) return constant_neg2_loglik(a_only, y.size(), t);
+    if (const auto s = proportional_neg2_loglik(b_only, t))
+      return *s + static_cast<double>(y.size() - t.nonzero) * std::log(kTiny) + t.zero_e2 / kTiny;
+    ChannelNoise n{NoiseModelKind::Affine, std::sqrt(a_only), std::sqrt(b_only), 0.0, 0.0, 0.0};
+    score(n, y, e, 2);
+    return n.neg2_loglik;
+  };
   for (int it = 0; it < 100; ++it) {
     double s00 = 0, s01 = 0, s11 = 0, t0 = 0, t1 = 0;
     for (std::size_t i = 0; i < y.size(); ++i) {
@@ -81,12 +150,9 @@ ChannelNoise affine_noise(const std::vector<double>& y, const std::vector<double
     double nb = det > 0 ? (s00 * t1 - s01 * t0) / det : -1.0;
     if (na < 0.0 || nb < 0.0) {  // a bound is active: the better one-parameter solution
       const double a_only = std::max(t0 / s00, 0.0), b_only = s11 > 0 ? std::max(t1 / s11, 0.0) : 0;
-      ChannelNoise ta{NoiseModelKind::Affine, std::sqrt(a_only), 0.0, 0.0, 0.0, 0.0};
-      ChannelNoise tb{NoiseModelKind::Affine, 0.0, std::sqrt(b_only), 0.0, 0.0, 0.0};
-      score(ta, y, e, 2);
-      score(tb, y, e, 2);
-      na = ta.neg2_loglik <= tb.neg2_loglik ? a_only : 0.0;
-      nb = ta.neg2_loglik <= tb.neg2_loglik ? 0.0 : b_only;
+      const bool keep_a = bound_neg2_loglik(a_only, 0.0) <= bound_neg2_loglik(0.0, b_only);
+      na = keep_a ? a_only : 0.0;
+      nb = keep_a ? 0.0 : b_only;
     }
     const double change = std::fabs(na - a) / std::max(na + nb * ym2, kTiny) +
                           std::fabs(nb - b) * ym2 / std::max(na + nb * ym2, kTiny);
@@ -98,21 +164,24 @@ ChannelNoise affine_noise(const std::vector<double>& y, const std::vector<double
   n.kind = NoiseModelKind::Affine;
   n.s_abs = std::sqrt(a);
   n.s_rel = std::sqrt(b);
-  score(n, y, e, 2);
+  if (a == 0.0 || b == 0.0)
+    set_score(n, bound_neg2_loglik(a, b), y.size(), 2);
+  else
+    score(n, y, e, 2);
   return n;
 }
 
 }  // namespace
 
 double noise_sigma(const ChannelNoise& n, double y) {
-  switch (n.kind) {
-    case NoiseModelKind::Relative:
-      return n.s_rel * std::max(std::fabs(y), n.floor);
-    case NoiseModelKind::Affine:
-      return std::hypot(n.s_abs, n.s_rel * y);
-    default:
-      return n.s_abs;
-  }
+  // In data units, where a square may overflow: no variance() here.
+  if (n.kind == NoiseModelKind::Relative) return n.s_rel * std::max(std::fabs(y), n.floor);
+  if (n.kind != NoiseModelKind::Affine) return n.s_abs;
+  // hypot guards against overflow and underflow at a cost; within these bounds a sqrt is exact
+  // enough, and it is called for every row of every refit.
+  const double p = std::fabs(n.s_rel * y), big = std::max(n.s_abs, p);
+  return big < 1e150 && big > 1e-150 ? std::sqrt(n.s_abs * n.s_abs + p * p)
+                                     : std::hypot(n.s_abs, p);
 }
 
 ChannelNoise estimate_channel_noise(const std::vector<double>& fitted_in,
@@ -130,20 +199,22 @@ ChannelNoise estimate_channel_noise(const std::vector<double>& fitted_in,
     residual[i] = residual_in[i] / unit;
   }
   ChannelNoise n;
+  const SampleSums sums = sample_sums(fitted, residual);
   switch (kind) {
     case NoiseModelKind::Constant:
-      n = constant_noise(fitted, residual);
+      n = constant_noise(residual, sums);
       break;
     case NoiseModelKind::Relative:
       n = relative_noise(fitted, residual);
       break;
     case NoiseModelKind::Affine:
-      n = affine_noise(fitted, residual);
+      n = affine_noise(fitted, residual, constant_noise(residual, sums),
+                       relative_noise(fitted, residual), sums);
       break;
     default: {  // Auto: the smallest BIC; ties go to the simpler model
-      const ChannelNoise c = constant_noise(fitted, residual);
+      const ChannelNoise c = constant_noise(residual, sums);
       const ChannelNoise r = relative_noise(fitted, residual);
-      const ChannelNoise a = affine_noise(fitted, residual);
+      const ChannelNoise a = affine_noise(fitted, residual, c, r, sums);
       n = c;
       if (r.bic < n.bic) n = r;
       if (a.bic < n.bic) n = a;

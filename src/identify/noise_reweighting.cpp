@@ -8,11 +8,12 @@
 
 #include "identify/fit_problem.hpp"
 #include "identify/noise_model.hpp"
+#include "identify/row_chunks.hpp"
 
 namespace frictionid {
 namespace {
 
-// Fitted values of every row (all channels) at x.
+// Fitted values of every row (all channels) at x, the rows spread over the problem's threads.
 std::array<std::vector<double>, kChannelCount> predictions(const LocalProblem& lp,
                                                            const ParamVector& x) {
   const FitSettings& s = *lp.settings;
@@ -20,13 +21,16 @@ std::array<std::vector<double>, kChannelCount> predictions(const LocalProblem& l
   const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(lp, x, false));
   std::array<std::vector<double>, kChannelCount> out;
   for (auto& v : out) v.resize(d.rows());
-  for (std::size_t i = 0; i < d.rows(); ++i) {
-    const auto r = model({d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]});
-    out[0][i] = r.T_x;
-    out[1][i] = r.T_y;
-    out[2][i] = r.M_z;
-    out[3][i] = r.M_roll;
-  }
+  for_each_chunk(chunk_count(d.rows()), lp.threads, [&](std::size_t c) {
+    const std::size_t end = std::min(d.rows(), (c + 1) * kChunkRows);
+    for (std::size_t i = c * kChunkRows; i < end; ++i) {
+      const auto r = model({d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]});
+      out[0][i] = r.T_x;
+      out[1][i] = r.T_y;
+      out[2][i] = r.M_z;
+      out[3][i] = r.M_roll;
+    }
+  });
   return out;
 }
 
@@ -65,17 +69,25 @@ NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, 
       nobs > k ? static_cast<double>(nobs) / static_cast<double>(nobs - k) : 1.0;
 
   std::array<ChannelNoise, kChannelCount> noise{}, previous{};
+  // What one channel's estimate adds to the totals; summed in channel order below.
+  struct ChannelStep {
+    double log_det = 0.0, change = 0.0;
+    int parameters = 0;
+  };
   for (int it = 1; it <= s.noise_iterations; ++it) {
     const auto fitted = predictions(lp, out.fit.x);
-    double change = 0.0;
-    out.log_det = 0.0;
-    out.parameters = 0;
-    for (auto& cs : res.channel_summaries) {
+    std::vector<ChannelStep> steps(res.channel_summaries.size());
+    // The channels are independent: one task each, on the problem's threads.
+    for_each_task(steps.size(), lp.threads, [&](std::size_t k) {
+      ChannelSummary& cs = res.channel_summaries[k];
+      ChannelStep& step = steps[k];
       const Channel c = cs.channel;
       const int ci = static_cast<int>(c);
       auto& sigma = out.weighted.sigma[ci];
-      if (!noise_estimated(s, data, c)) continue;
+      if (!noise_estimated(s, data, c)) return;
       std::vector<double> y, e;
+      y.reserve(cs.rows);
+      e.reserve(cs.rows);
       for (std::size_t i = 0; i < data.rows(); ++i)
         if (data.present[ci][i]) {
           y.push_back(fitted[ci][i]);
@@ -84,7 +96,7 @@ NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, 
       const NoiseModelKind kind =
           s.noise_model == NoiseModelKind::Auto ? NoiseModelKind::Auto : s.noise_model;
       noise[ci] = estimate_channel_noise(y, e, kind, dof_factor);
-      out.parameters += noise[ci].kind == NoiseModelKind::Affine ? 2 : 1;
+      step.parameters = noise[ci].kind == NoiseModelKind::Affine ? 2 : 1;
       // No sigma below rounding: noise-free data would otherwise divide by zero.
       double peak = 0.0;
       for (double v : y) peak = std::max(peak, std::fabs(v));
@@ -94,7 +106,7 @@ NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, 
       for (std::size_t i = 0; i < data.rows(); ++i)
         if (data.present[ci][i]) {
           sigma[i] = std::max(noise_sigma(noise[ci], fitted[ci][i]), floor);
-          out.log_det += 2.0 * std::log(sigma[i]);
+          step.log_det += 2.0 * std::log(sigma[i]);
           largest = std::max(largest, sigma[i]);
         }
       // The channel's representative sigma: the RMS over its rows, relative to the largest.
@@ -113,9 +125,17 @@ NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, 
       const double typical = peak * std::sqrt(y2 / static_cast<double>(y.size()));
       const double now = noise_sigma(noise[ci], typical),
                    before = noise_sigma(previous[ci], typical);
-      change = std::max(change, noise[ci].kind != previous[ci].kind
-                                    ? 1.0
-                                    : std::fabs(now - before) / std::max(now, 1e-300));
+      step.change = noise[ci].kind != previous[ci].kind
+                        ? 1.0
+                        : std::fabs(now - before) / std::max(now, 1e-300);
+    });
+    double change = 0.0;
+    out.log_det = 0.0;
+    out.parameters = 0;
+    for (const ChannelStep& step : steps) {
+      out.log_det += step.log_det;
+      out.parameters += step.parameters;
+      change = std::max(change, step.change);
     }
     previous = noise;
     res.noise_iterations = it;

@@ -15,10 +15,11 @@ int resolve_thread_count(int requested) {
   return hw > 0 ? static_cast<int>(std::min(hw, 64u)) : 1;
 }
 
-void for_each_chunk(std::size_t count, int threads, const std::function<void(std::size_t)>& work) {
-  // A thread costs tens of microseconds to start: not worth it for a few chunks.
-  const std::size_t parts =
-      std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), count / 4);
+namespace {
+
+// Runs work(0..count-1) on `parts` threads (the caller's among them), each taking the next index.
+void run_on_threads(std::size_t count, std::size_t parts,
+                    const std::function<void(std::size_t)>& work) {
   if (parts <= 1) {
     for (std::size_t c = 0; c < count; ++c) work(c);
     return;
@@ -45,6 +46,20 @@ void for_each_chunk(std::size_t count, int threads, const std::function<void(std
   run();
   for (auto& th : pool) th.join();
   if (error) std::rethrow_exception(error);
+}
+
+}  // namespace
+
+void for_each_chunk(std::size_t count, int threads, const std::function<void(std::size_t)>& work) {
+  // A thread costs tens of microseconds to start: not worth it for a few chunks.
+  run_on_threads(count,
+                 std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), count / 4),
+                 work);
+}
+
+void for_each_task(std::size_t count, int threads, const std::function<void(std::size_t)>& work) {
+  run_on_threads(
+      count, std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), count), work);
 }
 
 }  // namespace frictionid

@@ -18,6 +18,10 @@ inline std::size_t chunk_count(std::size_t rows) {
 // exception thrown by work is rethrown here after every thread has finished.
 void for_each_chunk(std::size_t count, int threads, const std::function<void(std::size_t)>& work);
 
+// The same for a few large independent tasks (such as the channels of a dataset), which are
+// worth a thread each.
+void for_each_task(std::size_t count, int threads, const std::function<void(std::size_t)>& work);
+
 // The thread count `0` stands for: every hardware thread.
 int resolve_thread_count(int requested);
 

@@ -59,6 +59,56 @@ TEST(NoiseModel, RelativeAndConstantEstimatesAreTheirMaximumLikelihood) {
   EXPECT_NEAR(c.s_abs, std::sqrt(se / s.e.size()), 1e-9 * c.s_abs);
 }
 
+// -2 log L summed row by row: log sigma_i^2 + e_i^2/sigma_i^2 at the reported estimate.
+double neg2_loglik_by_rows(const ChannelNoise& n, const Sample& s) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < s.y.size(); ++i) {
+    const double v = noise_sigma(n, s.y[i]) * noise_sigma(n, s.y[i]);
+    sum += std::log(v) + s.e[i] * s.e[i] / v;
+  }
+  return sum;
+}
+
+// The likelihood of the constant model and of the affine model on a bound comes from sums over
+// the sample in closed form: it must be the sum over the rows, and the BIC its documented
+// penalty. The estimate works in units of the sample's largest value, which shifts every
+// kind's -2 log L by the same n log(unit^2): the differences between kinds are compared. The
+// affine case lands on the bound s_abs = 0 for purely relative noise.
+TEST(NoiseModel, ReportedLikelihoodIsTheSumOverTheRows) {
+  for (const Sample& s :
+       {sample(0.0, 0.03, 3000, 11), sample(4.0, 0.0, 3000, 12), sample(2.0, 0.01, 3000, 13)}) {
+    const ChannelNoise c = estimate_channel_noise(s.y, s.e, NoiseModelKind::Constant);
+    const double c_rows = neg2_loglik_by_rows(c, s);
+    EXPECT_NEAR(c.bic, c.neg2_loglik + std::log(3000.0), 1e-9 * std::fabs(c.bic));
+    for (NoiseModelKind kind : {NoiseModelKind::Relative, NoiseModelKind::Affine}) {
+      const ChannelNoise n = estimate_channel_noise(s.y, s.e, kind);
+      const double rows = neg2_loglik_by_rows(n, s);
+      EXPECT_NEAR(n.neg2_loglik - c.neg2_loglik, rows - c_rows, 1e-9 * std::fabs(rows))
+          << static_cast<int>(kind);
+      const int k = kind == NoiseModelKind::Affine ? 2 : 1;
+      EXPECT_NEAR(n.bic, n.neg2_loglik + k * std::log(3000.0), 1e-9 * std::fabs(n.bic));
+    }
+  }
+}
+
+// Noise that grows faster than the fitted value (|e| = 3 % y (y/100)^0.3): the affine model's
+// best fit has s_abs = 0 (a bound), where its s_rel is the maximum likelihood of sigma = s_rel |y|,
+// sqrt(mean(e^2/y^2)), and its likelihood (a closed form there) the sum over the rows.
+TEST(NoiseModel, AffineEstimateOnTheBoundIsThePurelyRelativeOne) {
+  Sample s = sample(0.0, 0.03, 3000, 14);
+  double ratio2 = 0.0;
+  for (std::size_t i = 0; i < s.y.size(); ++i) {
+    s.e[i] = (i % 3 ? 0.03 : -0.03) * s.y[i] * std::pow(std::fabs(s.y[i]) / 100.0, 0.3);
+    ratio2 += (s.e[i] / s.y[i]) * (s.e[i] / s.y[i]);
+  }
+  const ChannelNoise a = estimate_channel_noise(s.y, s.e, NoiseModelKind::Affine);
+  const ChannelNoise c = estimate_channel_noise(s.y, s.e, NoiseModelKind::Constant);
+  EXPECT_EQ(a.s_abs, 0.0);
+  EXPECT_NEAR(a.s_rel, std::sqrt(ratio2 / 3000.0), 1e-9 * a.s_rel);
+  EXPECT_NEAR(a.neg2_loglik - c.neg2_loglik, neg2_loglik_by_rows(a, s) - neg2_loglik_by_rows(c, s),
+              1e-9 * std::fabs(neg2_loglik_by_rows(a, s)));
+}
+
 TEST(NoiseModel, TheDegreesOfFreedomFactorScalesTheVariances) {
   const Sample s = sample(2.0, 0.01, 500, 6);
   const ChannelNoise a = estimate_channel_noise(s.y, s.e, NoiseModelKind::Affine, 1.0);

@@ -17,6 +17,15 @@ TEST(RowChunks, EveryChunkRunsExactlyOnceWhateverTheThreadCount) {
   }
 }
 
+TEST(RowChunks, EveryTaskRunsExactlyOnceEvenWhenTasksAreFewerThanThreads) {
+  for (std::size_t count : {0u, 1u, 2u, 4u, 9u})
+    for (int threads : {1, 2, 8}) {
+      std::vector<std::atomic<int>> visits(count);
+      for_each_task(count, threads, [&](std::size_t c) { visits[c].fetch_add(1); });
+      for (std::size_t c = 0; c < count; ++c) ASSERT_EQ(visits[c].load(), 1) << count << " " << c;
+    }
+}
+
 TEST(RowChunks, AnExceptionInOneChunkReachesTheCaller) {
   EXPECT_THROW(for_each_chunk(100, 2,
                               [](std::size_t c) {
