@@ -83,15 +83,18 @@ class ModelEvaluator {
                  kind == ModelKind::Seed ? params[kB] : params[kBTilde],
                  params[kM],
                  params[kP0]};
+      products_ = model::approximant_products(approx_, shape_);
     }
   }
 
   model::Resultants<T> operator()(const model::Kinematics& k) const {
     switch (kind_) {
       case ModelKind::Seed:
-        return model::approximant_resultants(model::ApproximantForm::Seed, approx_, shape_, k);
+        return model::approximant_resultants(model::ApproximantForm::Seed, approx_, products_,
+                                             shape_, k);
       case ModelKind::Corrected:
-        return model::approximant_resultants(model::ApproximantForm::Corrected, approx_, shape_, k);
+        return model::approximant_resultants(model::ApproximantForm::Corrected, approx_, products_,
+                                             shape_, k);
       case ModelKind::Exact:
         return (*exact_)(k);
     }
@@ -112,6 +115,7 @@ class ModelEvaluator {
   std::unique_ptr<model::ExactModel<T>> exact_;  // only for the exact variant
   model::ApproximantShape<double> shape_{};
   model::ApproximantParams<T> approx_{};
+  model::ApproximantProducts<T> products_{};
 };
 
 }  // namespace frictionid

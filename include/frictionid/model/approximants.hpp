@@ -68,14 +68,29 @@ ApproximantShape<T> approximant_shape(const LawMoments<T>& mo) {
   return s;
 }
 
+// Products of parameters alone, the same for every row: formed once per parameter vector, since
+// in autodiff each product of two Jets costs as much as the rest of a row's arithmetic.
+template <typename T>
+struct ApproximantProducts {
+  T fkh;   // f kappa h: the lateral force factor at alpha = 0
+  T spin;  // (1 + kappa) mu_M f / 2 = M0/(N R)
+};
+
+template <typename T>
+ApproximantProducts<T> approximant_products(const ApproximantParams<T>& p,
+                                            const ApproximantShape<double>& shape) {
+  return {p.f * p.kappa * p.h, (T(1) + p.kappa) * (0.5 * shape.mu_M) * p.f};
+}
+
 // The shape constants are plain doubles: the pressure law of a closed-form fit is fixed, so
 // they never carry derivatives (and autodiff need not pay for them).
 template <typename T>
 Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantParams<T>& p,
+                                     const ApproximantProducts<T>& pp,
                                      const ApproximantShape<double>& shape, const Kinematics& k) {
   const SlipGeometry g = slip_geometry(k);
   Resultants<T> r;
-  r.M_roll = p.h * k.N * k.R * shape.rho_roll;
+  r.M_roll = p.h * (k.N * k.R * shape.rho_roll);
   r.N = T(k.N);
   if (g.at_rest) {
     r.T_x = r.T_y = r.M_z = T(0);
@@ -94,21 +109,22 @@ Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantPara
   const bool seed = form == ApproximantForm::Seed;
   const T y_p = seed ? (small ? (T(1) + p.b * e2) * y_t : (T(inv2) + p.b) * y_t)
                      : (small ? T(1) + p.b * e2 : T(inv2) + p.b);
-  const T f_p = seed ? T(small ? eps : q) : p.p0 * (small ? 1.0 : q);
-  const T F0 = p.f * k.N;
-  const T M0 = (T(1) + p.kappa) * (0.5 * shape.mu_M * k.R) * F0;
+  // p_hat = f_p/sqrt(y_p); the seed's f_p is a plain number, the corrected form's p0 a parameter.
+  const T p_hat =
+      seed ? inv_sqrt(y_p) * (small ? eps : q) : p.p0 * (inv_sqrt(y_p) * (small ? 1.0 : q));
   if (sa == 0.0) {
     // Slip along the x axis (ca = +-1) or pure spin: d11 = 1, d12 = 0, d22 = kappa, m(alpha) = m
     // and every tilt stand-in but p_hat drops out; the common case of test-rig data, and the
-    // seed's three published formulas.
-    const T t = f_t * inv_sqrt(y_t);
-    const T p_hat = f_p * inv_sqrt(y_p);
+    // seed's three published formulas. F0 = f N and M0 = spin N R.
+    const T t = inv_sqrt(y_t) * (f_t * ca * k.N);
     const T g_aligned = small ? inv_sqrt(T(1) + p.m * e2) : q * inv_sqrt(T(inv2) + p.m);
-    r.T_x = F0 * (ca * t);
-    r.T_y = F0 * p.kappa * p.h * (s * p_hat);
-    r.M_z = M0 * s * g_aligned;
+    r.T_x = p.f * t;
+    r.T_y = pp.fkh * (p_hat * (s * k.N));
+    r.M_z = pp.spin * (g_aligned * (s * k.N * k.R));
     return r;
   }
+  const T F0 = p.f * k.N;
+  const T M0 = pp.spin * (k.N * k.R);
   const T d11 = T(ca * ca) + p.kappa * (sa * sa);
   const T d22 = T(sa * sa) + p.kappa * (ca * ca);
   const T d12 = (p.kappa - T(1)) * (sa * ca);
@@ -125,7 +141,6 @@ Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantPara
             : std::array<double, 4>{inv2 + shape.b_S, inv2 + shape.c_U, 1.0 + shape.c_X * inv2,
                                     1.0 + shape.c_V * inv2};
   const T t = f_t * inv_sqrt(y_t);
-  const T p_hat = f_p * inv_sqrt(y_p);
   const T g_hat = f_g * inv_sqrt(y_g);
   const std::array<double, 4> r_tilt = inv_sqrt_each(y_tilt);
   const double qs = small ? 1.0 : q * r_tilt[0];
@@ -143,6 +158,13 @@ Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantPara
   r.M_z = M0 * s * g_hat + F0 * k.R * p.h * shape.rho_roll *
                                (ca * d12 * (x_hat - u_hat) - sa * (d22 * u_hat - d11 * v_hat));
   return r;
+}
+
+// The same with the parameter products formed here (one row at a time: tests, references).
+template <typename T>
+Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantParams<T>& p,
+                                     const ApproximantShape<double>& shape, const Kinematics& k) {
+  return approximant_resultants(form, p, approximant_products(p, shape), shape, k);
 }
 
 }  // namespace frictionid::model
