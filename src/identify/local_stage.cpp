@@ -256,7 +256,7 @@ class NormalEquationsCost final : public ceres::CostFunction {
       // The previous trial was rejected if its normal equations are still unclaimed.
       const bool last_accepted = !kept_;
       kept_ = false;
-      if (last_accepted && JetPasses<N>::normal_equations(p_, x, kept_ne_)) {
+      if (last_accepted && !expect_final(z) && JetPasses<N>::normal_equations(p_, x, kept_ne_)) {
         std::copy(z, z + N, kept_z_.begin());
         kept_ = true;
         return cost_only(kept_ne_.rtr, residuals);
@@ -270,7 +270,11 @@ class NormalEquationsCost final : public ceres::CostFunction {
     const bool reuse = kept_ && std::equal(z, z + N, kept_z_.begin());
     kept_ = false;
     if (!reuse && !JetPasses<N>::normal_equations(p_, x, fresh)) return false;
-    const SquareRootForm f = square_root_form(reuse ? kept_ne_ : fresh);
+    const NormalEquations& ne = reuse ? kept_ne_ : fresh;
+    std::copy(z, z + N, at_z_.begin());
+    at_ne_ = ne;
+    have_at_ = true;
+    const SquareRootForm f = square_root_form(ne);
     for (int i = 0; i < N; ++i) residuals[i] = f.w[i];
     residuals[N] = f.rho;
     double* jac = jacobians[0];  // row-major (N + 1) x N
@@ -281,6 +285,18 @@ class NormalEquationsCost final : public ceres::CostFunction {
   }
 
  private:
+  // Whether the trial z looks like the last of the fit: where the Gauss-Newton model at the last
+  // Jacobian predicts a cost change within the function tolerance, Ceres will likely stop on it
+  // and never ask for its Jacobian, so the plain pass is enough. A wrong guess costs one pass,
+  // never a bit of the result.
+  bool expect_final(const double* z) const {
+    if (!have_at_) return false;
+    Eigen::Matrix<double, N, 1> d;
+    for (int j = 0; j < N; ++j) d[j] = z[j] - at_z_[j];
+    const double predicted = at_ne_.jtr.dot(d) + 0.5 * d.dot(at_ne_.jtj * d);
+    return std::fabs(predicted) <= p_.settings->function_tolerance * 0.5 * at_ne_.rtr;
+  }
+
   static bool cost_only(double sum_sq, double* residuals) {
     for (int j = 0; j < N; ++j) residuals[j] = 0.0;
     residuals[N] = std::sqrt(sum_sq);
@@ -293,6 +309,10 @@ class NormalEquationsCost final : public ceres::CostFunction {
   mutable bool kept_ = false;
   mutable std::array<double, N> kept_z_{};
   mutable NormalEquations kept_ne_;
+  // The point of the last Jacobian and its normal equations: the model of the next trial.
+  mutable bool have_at_ = false;
+  mutable std::array<double, N> at_z_{};
+  mutable NormalEquations at_ne_;
 };
 
 template <int N>
