@@ -49,7 +49,9 @@ void write_run_report(const BatchContext& c, const BatchRun& run, const FitResul
                       const Dataset& data) {
   const fs::path dir = c.dir / "runs" / run.directory;
   if (c.options.per_run_reports == "full") {
-    write_report(dir.string(), r, data);
+    ReportOptions options;  // as many threads as each run fits on
+    options.threads = c.fit_threads;
+    write_report(dir.string(), r, data, options);
   } else if (c.options.per_run_reports == "json") {
     fs::create_directories(dir);
     const auto json =

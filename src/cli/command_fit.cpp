@@ -31,6 +31,7 @@ int run_fit(const FitOptions& o) {
   ReportOptions report_options;
   report_options.plot_x = o.plot_x;
   report_options.color_by = o.color_by;
+  report_options.threads = o.threads;
   try {
     check_report_columns(data, report_options);  // before the fit, not after it
   } catch (const std::invalid_argument& e) {

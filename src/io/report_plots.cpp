@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include <frictionid/model_comparison.hpp>
+#include "identify/row_chunks.hpp"
 #include "io/svg_plot.hpp"
 #include "io/text.hpp"
 
@@ -531,15 +532,26 @@ std::vector<ReportPlot> make_plots(const FitResult& r, const Dataset& d, const R
     const int ci = static_cast<int>(c);
     if (r.fitted[ci].size() != n || d.value[ci].size() != n || d.present[ci].size() != n) continue;
     ChannelRows rows = channel_rows(r, d, c, axis);
-    if (rows.rows.empty()) continue;
-    plots.push_back(collapse_plot(r, d, c, axis, rows, groups));
-    plots.push_back(fit_plot(r, d, c, axis, rows));
-    plots.push_back(residual_plot(r, d, c, axis, rows));
-    shown.emplace_back(c, std::move(rows));
+    if (!rows.rows.empty()) shown.emplace_back(c, std::move(rows));
   }
+  // Each channel's plots are drawn by one task into its own slots; the order of the list (per
+  // channel collapse, fit, residuals; then the --plot-x plots) does not depend on the threads.
+  const std::size_t per_channel = 3 + o.plot_x.size();
+  std::vector<ReportPlot> drawn(shown.size() * per_channel);
+  for_each_task(shown.size(), resolve_thread_count(o.threads), [&](std::size_t j) {
+    const auto& [c, rows] = shown[j];
+    ReportPlot* out = &drawn[j * per_channel];
+    out[0] = collapse_plot(r, d, c, axis, rows, groups);
+    out[1] = fit_plot(r, d, c, axis, rows);
+    out[2] = residual_plot(r, d, c, axis, rows);
+    for (std::size_t k = 0; k < o.plot_x.size(); ++k)
+      out[3 + k] = column_plot(r, d, c, o.plot_x[k], x_columns[k], rows);
+  });
+  for (std::size_t j = 0; j < shown.size(); ++j)
+    for (std::size_t m = 0; m < 3; ++m) plots.push_back(std::move(drawn[j * per_channel + m]));
   for (std::size_t k = 0; k < o.plot_x.size(); ++k)
-    for (const auto& [c, rows] : shown)
-      plots.push_back(column_plot(r, d, c, o.plot_x[k], x_columns[k], rows));
+    for (std::size_t j = 0; j < shown.size(); ++j)
+      plots.push_back(std::move(drawn[j * per_channel + 3 + k]));
   return plots;
 }
 

@@ -18,6 +18,7 @@ struct ReportOptions {
   std::vector<std::string> plot_x;  // columns to plot every fitted channel against
   std::string color_by;             // colours of the collapse plots; empty: the load N, when it
                                     // takes at most 8 values
+  int threads = 0;                  // threads drawing the plots (a channel each); 0: all cores
 };
 
 // The report as JSON, keys in docs/design.md's order, parameters in FitResult order. Absent
