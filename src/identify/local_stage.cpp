@@ -7,7 +7,9 @@
 // k+1 residuals [w; rho] with Jacobian [A; 0]. Levenberg-Marquardt sees the same cost, gradient,
 // Gauss-Newton matrix and predicted decrease as with the m rows themselves (what
 // DENSE_NORMAL_CHOLESKY would form), but never stores an m x k Jacobian: memory stays O(k^2),
-// the work is one pass over the rows, and the bits do not depend on the thread count.
+// the work is one pass over the rows, and the bits do not depend on the thread count. Where the
+// processor has AVX2, the closed-form models' rows of slip along x go four at a time, a row per
+// vector lane (aligned_row_packets.hpp), in functions compiled for AVX2 and chosen at run time.
 
 // GCC's inliner runs out of budget inside the large Jet expressions of the models and leaves
 // Eigen's 6-element vector operations as calls, which then cost more than the arithmetic.
@@ -26,7 +28,9 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <optional>
 
+#include "identify/aligned_row_packets.hpp"
 #include "identify/normal_equations.hpp"
 #include "identify/row_chunks.hpp"
 #include "identify/solver_progress.hpp"
@@ -44,26 +48,81 @@ std::size_t problem_chunks(const LocalProblem& p) {
   return chunk_count(p.rows.end - p.rows.begin);
 }
 
+// The packet pass's parameters (aligned_row_packets.hpp) where it applies: a closed-form model
+// without a robust loss, on a processor with AVX2. params: doubles or Jets, in ParamVector order.
+template <int N, typename T>
+std::optional<packets::PacketParams<N>> packet_params_for(const FitSettings& s, const T* params) {
+  if (s.model == ModelKind::Exact || s.loss != LossKind::None || !packets::avx2_available())
+    return std::nullopt;
+  const bool seed = s.model == ModelKind::Seed;
+  const model::ApproximantParams<T> ap{
+      params[kF], params[kKappa], params[kH], params[kA], seed ? params[kB] : params[kBTilde],
+      params[kM], params[kP0]};
+  return packets::packet_params<N>(
+      seed ? model::ApproximantForm::Seed : model::ApproximantForm::Corrected, ap,
+      model::approximant_shape(model::law_moments(s.law)));
+}
+
+// Whether rows i .. i+3 of [i, end) all go in a packet.
+bool packet_ahead(const Dataset& d, std::size_t i, std::size_t end) {
+  return i + packets::kLanes <= end && packets::packet_row(d, i) && packets::packet_row(d, i + 1) &&
+         packets::packet_row(d, i + 2) && packets::packet_row(d, i + 3);
+}
+
+// The squared residuals of rows [i0, i1) in plain doubles, summed row by row: four rows at a
+// time where packet_ahead holds and pp is given, one at a time otherwise. False if one is not
+// finite.
+template <bool kPackets>
+FRICTIONID_PACKET_INLINE bool sum_chunk(const LocalProblem& p, const ModelEvaluator<double>& model,
+                                        const packets::PacketParams<0>* pp, std::size_t i0,
+                                        std::size_t i1, double& sum_sq) {
+  const FitSettings& s = *p.settings;
+  const std::size_t nc = p.rows.channels.size();
+  packets::Lanes unused[1] = {packets::broadcast(0.0)};
+  double buf[kChannelCount];
+  double sum = 0.0;
+  for (std::size_t i = i0; i < i1;) {
+    if constexpr (kPackets)
+      if (pp && packet_ahead(*p.rows.data, i, i1)) {
+        if (!packets::packet_rows(p.rows, *pp, i, unused, sum)) return false;
+        i += packets::kLanes;
+        continue;
+      }
+    if (!row_residuals(p.rows, model, s.loss, s.loss_scale, i, buf)) return false;
+    for (std::size_t j = 0; j < nc; ++j) sum += buf[j] * buf[j];
+    ++i;
+  }
+  sum_sq = sum;
+  return true;
+}
+
+bool sum_chunk_baseline(const LocalProblem& p, const ModelEvaluator<double>& model,
+                        const packets::PacketParams<0>* pp, std::size_t i0, std::size_t i1,
+                        double& sum_sq) {
+  return sum_chunk<false>(p, model, pp, i0, i1, sum_sq);
+}
+
+__attribute__((target("avx2"))) bool sum_chunk_avx2(const LocalProblem& p,
+                                                    const ModelEvaluator<double>& model,
+                                                    const packets::PacketParams<0>* pp,
+                                                    std::size_t i0, std::size_t i1,
+                                                    double& sum_sq) {
+  return sum_chunk<true>(p, model, pp, i0, i1, sum_sq);
+}
+
 // Sum of squared residuals over all rows in plain doubles; +inf if any is not finite.
 double sum_of_squares(const LocalProblem& p, const ParamVector& x) {
   const FitSettings& s = *p.settings;
   const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(p, x, false),
                                      p.quadrature);
+  const auto pp = packet_params_for<0>(s, x.data());
+  const auto chunk_sum = packets::avx2_available() ? sum_chunk_avx2 : sum_chunk_baseline;
   const std::size_t chunks = problem_chunks(p);
   std::vector<double> part(chunks, 0.0);
   std::vector<char> good(chunks, 1);
   for_each_chunk(chunks, p.threads, [&](std::size_t c) {
-    double buf[kChannelCount];
-    double sum = 0.0;
-    const std::size_t nc = p.rows.channels.size();
-    for (std::size_t i = chunk_begin(p, c); i < chunk_end(p, c); ++i) {
-      if (!row_residuals(p.rows, model, s.loss, s.loss_scale, i, buf)) {
-        good[c] = 0;
-        return;
-      }
-      for (std::size_t j = 0; j < nc; ++j) sum += buf[j] * buf[j];
-    }
-    part[c] = sum;
+    if (!chunk_sum(p, model, pp ? &*pp : nullptr, chunk_begin(p, c), chunk_end(p, c), part[c]))
+      good[c] = 0;
   });
   double total = 0.0;
   for (std::size_t c = 0; c < chunks; ++c) {
@@ -71,6 +130,67 @@ double sum_of_squares(const LocalProblem& p, const ParamVector& x) {
     total += part[c];
   }
   return total;
+}
+
+// The Gram matrix of [J r] of rows [i0, i1) added to g, their squared residuals to sum_sq:
+// four rows at a time where packet_ahead holds and pp is given (aligned_row_packets.hpp), one at
+// a time otherwise. False if a residual or derivative is not finite.
+template <int N, bool kPackets>
+FRICTIONID_PACKET_INLINE bool gram_chunk(const LocalProblem& p,
+                                         const ModelEvaluator<ceres::Jet<double, N>>& model,
+                                         const packets::PacketParams<N>* pp, std::size_t i0,
+                                         std::size_t i1, Eigen::Matrix<double, N + 1, N + 1>& g,
+                                         double& sum_sq) {
+  using packets::Lanes;
+  const FitSettings& s = *p.settings;
+  const Dataset& d = *p.rows.data;
+  const std::size_t nc = p.rows.channels.size();
+  constexpr int kLower = (N + 1) * (N + 2) / 2;
+  Lanes lower[kLower];
+  for (auto& x : lower) x = packets::broadcast(0.0);
+  ceres::Jet<double, N> buf[kChannelCount];
+  Eigen::Matrix<double, N + 1, 1> v;
+  double sum = 0.0;
+  for (std::size_t i = i0; i < i1;) {
+    if constexpr (kPackets)
+      if (pp && packet_ahead(d, i, i1)) {
+        if (!packets::packet_rows(p.rows, *pp, i, lower, sum)) return false;
+        i += packets::kLanes;
+        continue;
+      }
+    if (!row_residuals(p.rows, model, s.loss, s.loss_scale, i, buf)) return false;
+    for (std::size_t j = 0; j < nc; ++j) {
+      v.template head<N>() = buf[j].v;
+      v[N] = buf[j].a;
+      g.noalias() += v * v.transpose();
+      sum += buf[j].a * buf[j].a;
+    }
+    ++i;
+  }
+  int k = 0;
+  for (int x = 0; x <= N; ++x)
+    for (int y = 0; y <= x; ++y, ++k) {
+      const double t = (lower[k][0] + lower[k][1]) + (lower[k][2] + lower[k][3]);
+      g(x, y) += t;
+      if (x != y) g(y, x) += t;
+    }
+  sum_sq = sum;
+  return true;
+}
+
+template <int N>
+bool gram_chunk_baseline(const LocalProblem& p, const ModelEvaluator<ceres::Jet<double, N>>& model,
+                         const packets::PacketParams<N>* pp, std::size_t i0, std::size_t i1,
+                         Eigen::Matrix<double, N + 1, N + 1>& g, double& sum_sq) {
+  return gram_chunk<N, false>(p, model, pp, i0, i1, g, sum_sq);
+}
+
+template <int N>
+__attribute__((target("avx2"))) bool gram_chunk_avx2(
+    const LocalProblem& p, const ModelEvaluator<ceres::Jet<double, N>>& model,
+    const packets::PacketParams<N>* pp, std::size_t i0, std::size_t i1,
+    Eigen::Matrix<double, N + 1, N + 1>& g, double& sum_sq) {
+  return gram_chunk<N, true>(p, model, pp, i0, i1, g, sum_sq);
 }
 
 // Autodiff passes with Jets as wide as the free parameters.
@@ -138,9 +258,8 @@ struct JetPasses {
     return std::all_of(good.begin(), good.end(), [](char g) { return g != 0; });
   }
 
-  // The Gram matrix of [J r] summed row by row as the residuals come, with no m x (k+1) block in
-  // between: one rank-1 update per residual (the full square: it vectorises, where a triangle
-  // would not).
+  // The Gram matrix of [J r] summed as the residuals come (gram_chunk), with no m x (k+1) block
+  // in between; rows of slip along x four at a time through the packet pass.
   static bool normal_equations(const LocalProblem& p, const ParamVector& x, NormalEquations& ne) {
     const FitSettings& s = *p.settings;
     const auto pj = seeded(p, x);
@@ -149,30 +268,29 @@ struct JetPasses {
     const std::size_t chunks = problem_chunks(p);
     std::vector<Gram> gram(chunks);
     std::vector<char> good(chunks, 1);
-    const std::size_t nc = p.rows.channels.size();
+    // Rows of slip along x go four at a time through the packet pass where it applies.
+    const auto pp = packet_params_for<N>(s, pj.data());
+    const auto chunk_gram = packets::avx2_available() ? gram_chunk_avx2<N> : gram_chunk_baseline<N>;
+    std::vector<double> sum_sq(chunks, 0.0);
     for_each_chunk(chunks, p.threads, [&](std::size_t c) {
       Gram g = Gram::Zero();
-      Jet buf[kChannelCount];
-      Eigen::Matrix<double, N + 1, 1> v;
-      for (std::size_t i = chunk_begin(p, c); i < chunk_end(p, c); ++i) {
-        if (!row_residuals(p.rows, model, s.loss, s.loss_scale, i, buf)) {
-          good[c] = 0;
-          return;
-        }
-        for (std::size_t j = 0; j < nc; ++j) {
-          v.template head<N>() = buf[j].v;
-          v[N] = buf[j].a;
-          g.noalias() += v * v.transpose();
-        }
-      }
-      gram[c] = g;
+      if (!chunk_gram(p, model, pp ? &*pp : nullptr, chunk_begin(p, c), chunk_end(p, c), g,
+                      sum_sq[c]))
+        good[c] = 0;
+      else
+        gram[c] = g;
     });
     if (!std::all_of(good.begin(), good.end(), [](char ok) { return ok != 0; })) return false;
+    // r^T r summed row by row and chunk by chunk, as the plain pass sums it (not the Gram
+    // matrix's corner, whose packet lanes are summed apart): Ceres sees one cost whichever ran.
     Gram total = Gram::Zero();
-    for (std::size_t c = 0; c < gram.size(); ++c) total += gram[c];
+    ne.rtr = 0.0;
+    for (std::size_t c = 0; c < gram.size(); ++c) {
+      total += gram[c];
+      ne.rtr += sum_sq[c];
+    }
     ne.jtj = total.template topLeftCorner<N, N>();
     ne.jtr = total.template topRightCorner<N, 1>();
-    ne.rtr = total(N, N);
     return true;
   }
 
@@ -361,6 +479,10 @@ std::shared_ptr<const model::RingIntegralTable> pass_table(const LocalProblem& p
   if (p.exact_table) return p.exact_table;
   if (!exponent_free(p)) return nullptr;
   return ring_table_for_rows(s.model, s.law, x[kN], n_slopes, p.rows.end - p.rows.begin);
+}
+
+void allow_row_packets(bool allow) {
+  packets::row_packets_allowed().store(allow, std::memory_order_relaxed);
 }
 
 double problem_cost(const LocalProblem& p, const ParamVector& x) {

@@ -56,6 +56,11 @@ LocalOutcome local_fit(const LocalProblem& p, const ParamVector& start, FitObser
 // 1/2 sum of squared (robustified) residuals at x, or +inf where the model is not finite.
 double problem_cost(const LocalProblem& p, const ParamVector& x);
 
+// Whether the passes of the closed-form models may take rows of slip along x four at a time
+// where the processor has AVX2 (aligned_row_packets.hpp); on unless turned off. Off: every row
+// one at a time, the same costs to the bit. Process-wide; for tests and comparisons.
+void allow_row_packets(bool allow);
+
 // J^T J, J^T r and r^T r over all rows at x (J with respect to the free parameters): one
 // autodiff pass, the work of one Jacobian evaluation of the local stage. False where the model
 // is not finite.

@@ -20,7 +20,8 @@ struct Fixture {
 };
 
 // Rows in several slip directions, all four channels, 1 % noise; free = every model parameter.
-void make(Fixture& f, ModelKind kind, const Law& law, std::size_t rows, LossKind loss) {
+void make(Fixture& f, ModelKind kind, const Law& law, std::size_t rows, LossKind loss,
+          std::vector<double> slip_angles = {0.0, 0.4, 1.2, -2.0}) {
   f.settings.model = kind;
   f.settings.law = law;
   f.settings.params = default_parameter_settings(law);
@@ -29,7 +30,7 @@ void make(Fixture& f, ModelKind kind, const Law& law, std::size_t rows, LossKind
   f.truth = default_parameters(law, 0.85, 1.3, 0.12);
   SyntheticDesign design;
   design.rows = rows;
-  design.slip_angles = {0.0, 0.4, 1.2, -2.0};
+  design.slip_angles = slip_angles;
   f.data = generate_dataset(kind, law, f.truth, design, NoiseSpec{0.01, 0.0, false}, 17);
   f.problem.rows.data = &f.data;
   f.problem.rows.channels = {Channel::T_x, Channel::T_y, Channel::M_z, Channel::M_roll};
@@ -50,9 +51,11 @@ std::vector<double> residuals_at(const Fixture& f, const ParamVector& x) {
 
 // J^T J, J^T r and r^T r of the autodiff pass against a Jacobian by central differences of the
 // plain-double residuals.
-void expect_normal_equations_match_differences(ModelKind kind, const Law& law, LossKind loss) {
+void expect_normal_equations_match_differences(ModelKind kind, const Law& law, LossKind loss,
+                                               std::vector<double> slip_angles = {0.0, 0.4, 1.2,
+                                                                                  -2.0}) {
   Fixture f;
-  make(f, kind, law, 300, loss);
+  make(f, kind, law, 300, loss, slip_angles);
   ParamVector x = f.truth;
   for (int i : f.problem.free) x[i] *= 1.03;  // off the optimum: J^T r is not small
   const std::size_t k = f.problem.free.size();
@@ -84,6 +87,55 @@ void expect_normal_equations_match_differences(ModelKind kind, const Law& law, L
 
 TEST(LocalStage, SeedNormalEquationsMatchCentralDifferences) {
   expect_normal_equations_match_differences(ModelKind::Seed, Law::hertz(), LossKind::None);
+}
+
+// Slip along x only: the rows go four at a time through the packet pass.
+TEST(LocalStage, SeedAndCorrectedPacketPassesMatchCentralDifferences) {
+  expect_normal_equations_match_differences(ModelKind::Seed, Law::hertz(), LossKind::None, {0.0});
+  expect_normal_equations_match_differences(ModelKind::Corrected, Law::power(1.7), LossKind::None,
+                                            {0.0});
+}
+
+// The packet passes (AVX2) against the row-by-row passes on the same rows (allow_row_packets): the
+// sum of squares of all four passes to the bit, J^T J and J^T r to rounding (the lanes are summed
+// apart). Rows of slip along x in both directions, with and without spin, a sigma column,
+// unmeasured values, and a few oblique rows between them.
+TEST(LocalStage, PacketPassAgreesWithTheRowByRowPass) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "no AVX2 here: the packet pass never runs";
+  for (ModelKind kind : {ModelKind::Seed, ModelKind::Corrected}) {
+    Fixture f;
+    make(f, kind, Law::hertz(), 2003, LossKind::None, {0.0});
+    Dataset& d = f.data;
+    for (std::size_t i = 0; i < d.rows(); ++i) {
+      if (i % 3 == 1) d.v_x[i] = -d.v_x[i];  // slip along -x
+      if (i % 97 == 5) d.v_y[i] = 0.01;      // oblique: the scalar path
+      if (i % 89 == 7) d.omega[i] = 0.0;     // pure sliding
+      if (i % 83 == 9) d.v_x[i] = 0.0;       // pure spin
+      if (i % 13 == 3) d.present[static_cast<int>(Channel::M_z)][i] = 0;
+    }
+    d.sigma[static_cast<int>(Channel::T_y)].assign(d.rows(), 0.0);
+    for (std::size_t i = 0; i < d.rows(); ++i)
+      d.sigma[static_cast<int>(Channel::T_y)][i] = 2.0 + 0.01 * static_cast<double>(i % 31);
+    ParamVector x = f.truth;
+    for (int i : f.problem.free) x[i] *= 0.97;
+    f.problem.threads = 2;
+    NormalEquations packed, scalar;
+    ASSERT_TRUE(normal_equations(f.problem, x, packed));
+    const double packed_cost = problem_cost(f.problem, x);
+    allow_row_packets(false);
+    ASSERT_TRUE(normal_equations(f.problem, x, scalar));
+    const double scalar_cost = problem_cost(f.problem, x);
+    allow_row_packets(true);
+    EXPECT_EQ(packed.rtr, scalar.rtr);
+    EXPECT_EQ(packed.rtr, 2.0 * packed_cost);
+    EXPECT_EQ(packed_cost, scalar_cost);
+    for (Eigen::Index a = 0; a < packed.jtj.rows(); ++a) {
+      for (Eigen::Index b = 0; b < packed.jtj.cols(); ++b)
+        EXPECT_NEAR(packed.jtj(a, b), scalar.jtj(a, b),
+                    1e-13 * std::sqrt(scalar.jtj(a, a) * scalar.jtj(b, b)));
+      EXPECT_NEAR(packed.jtr[a], scalar.jtr[a], 1e-13 * std::sqrt(scalar.jtj(a, a) * scalar.rtr));
+    }
+  }
 }
 
 TEST(LocalStage, CorrectedNormalEquationsWithHuberLossMatchCentralDifferences) {

@@ -1,0 +1,241 @@
+// The autodiff pass of the closed-form models over four rows at a time, for rows of slip along x
+// (v_y = 0: the common case of test-rig data). Each value is a 4-lane vector, one row per lane,
+// and each derivative a vector of those: forward-mode autodiff as ceres::Jet does it, with the
+// same operations in the same order (no fused multiply-add), so every lane holds the bits the
+// Jet of its row would. Only the aligned branch of approximant_resultants (approximants.hpp) and
+// the plain least-squares residual (residuals.hpp, no robust loss) are written here; every other
+// row takes the scalar path. Included by local_stage.cpp only, which compiles it twice: for the
+// baseline instruction set and for AVX2, chosen at run time.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include <immintrin.h>
+
+#include <frictionid/model/approximants.hpp>
+
+#include "identify/residuals.hpp"
+
+// Every function that takes or returns Lanes by value is inlined: no call passes a 32-byte
+// vector, so the ABI note GCC gives for them without AVX does not apply (-Wno-psabi, set for
+// local_stage.cpp in src/CMakeLists.txt).
+namespace frictionid::packets {
+
+#define FRICTIONID_PACKET_INLINE inline __attribute__((always_inline))
+
+constexpr int kLanes = 4;
+typedef double Lanes __attribute__((vector_size(kLanes * sizeof(double))));
+
+FRICTIONID_PACKET_INLINE Lanes broadcast(double x) {
+  return Lanes{x, x, x, x};
+}
+
+// Square roots of the four lanes in one instruction. The packet pass runs only where the
+// processor has AVX2 (avx2_available) and inside functions compiled for it, where this inlines;
+// elsewhere the scalar path is as fast (4-lane vectors on SSE2 are not). By pointer: a 32-byte
+// vector by value changes the ABI.
+__attribute__((target("avx2"))) inline void sqrt_avx2(const Lanes* x, Lanes* r) {
+  *r = reinterpret_cast<Lanes>(_mm256_sqrt_pd(reinterpret_cast<__m256d>(*x)));
+}
+FRICTIONID_PACKET_INLINE Lanes sqrt(Lanes x) {
+  Lanes r;
+  sqrt_avx2(&x, &r);
+  return r;
+}
+
+// Whether this processor has AVX2 and the packets are allowed (allow_row_packets in
+// local_stage.hpp; the tests compare the two paths).
+inline std::atomic<bool>& row_packets_allowed() {
+  static std::atomic<bool> allowed{true};
+  return allowed;
+}
+inline bool avx2_available() {
+  return __builtin_cpu_supports("avx2") && row_packets_allowed().load(std::memory_order_relaxed);
+}
+
+// A value and its N derivatives, each for four rows.
+template <int N>
+struct Dual {
+  Lanes a;
+  std::array<Lanes, N> v;
+};
+
+// A parameter as a plain number (the residual-only pass, N = 0).
+template <int N>
+Dual<N> broadcast(double x) {
+  Dual<N> d;
+  d.a = broadcast(x);
+  for (int k = 0; k < N; ++k) d.v[k] = broadcast(0.0);
+  return d;
+}
+
+// A parameter (or a product of parameters): the same value and derivatives in every lane.
+template <int N, typename Jet>
+Dual<N> broadcast(const Jet& j) {
+  Dual<N> d;
+  d.a = broadcast(j.a);
+  for (int k = 0; k < N; ++k) d.v[k] = broadcast(j.v[k]);
+  return d;
+}
+
+// ceres::Jet's f * g: (f.a g.a, f.a g.v + f.v g.a).
+template <int N>
+FRICTIONID_PACKET_INLINE Dual<N> mul(const Dual<N>& f, const Dual<N>& g) {
+  Dual<N> r;
+  r.a = f.a * g.a;
+  for (int k = 0; k < N; ++k) r.v[k] = f.a * g.v[k] + f.v[k] * g.a;
+  return r;
+}
+
+// f * s for a plain number s per lane.
+template <int N>
+FRICTIONID_PACKET_INLINE Dual<N> mul(const Dual<N>& f, Lanes s) {
+  Dual<N> r;
+  r.a = f.a * s;
+  for (int k = 0; k < N; ++k) r.v[k] = f.v[k] * s;
+  return r;
+}
+
+// c + f * s: what the models write T(c) + f * s (s = 1: T(c) + f).
+template <int N>
+FRICTIONID_PACKET_INLINE Dual<N> affine(Lanes c, const Dual<N>& f, Lanes s) {
+  Dual<N> r;
+  r.a = c + f.a * s;
+  for (int k = 0; k < N; ++k) r.v[k] = f.v[k] * s;
+  return r;
+}
+
+// inv_sqrt of scalar_ops.hpp: 1/sqrt(x), derivative -x^(-3/2)/2.
+template <int N>
+FRICTIONID_PACKET_INLINE Dual<N> inv_sqrt(const Dual<N>& x) {
+  Dual<N> r;
+  r.a = 1.0 / sqrt(x.a);
+  const Lanes d = -0.5 * r.a * r.a * r.a;
+  for (int k = 0; k < N; ++k) r.v[k] = x.v[k] * d;
+  return r;
+}
+
+// The parameters of one pass, broadcast.
+template <int N>
+struct PacketParams {
+  Dual<N> f, h, a, b, m, p0, fkh, spin;
+  double rho_roll = 0.0;
+  bool seed = true;
+};
+
+template <int N, typename Jet>
+PacketParams<N> packet_params(model::ApproximantForm form, const model::ApproximantParams<Jet>& p,
+                              const model::ApproximantShape<double>& shape) {
+  const model::ApproximantProducts<Jet> pp = model::approximant_products(p, shape);
+  PacketParams<N> out;
+  out.f = broadcast<N>(p.f);
+  out.h = broadcast<N>(p.h);
+  out.a = broadcast<N>(p.a);
+  out.b = broadcast<N>(p.b);
+  out.m = broadcast<N>(p.m);
+  out.p0 = broadcast<N>(p.p0);
+  out.fkh = broadcast<N>(pp.fkh);
+  out.spin = broadcast<N>(pp.spin);
+  out.rho_roll = shape.rho_roll;
+  out.seed = form == model::ApproximantForm::Seed;
+  return out;
+}
+
+// Whether row i goes in a packet: slip along x and not at rest (slip_geometry's aligned case).
+inline bool packet_row(const Dataset& d, std::size_t i) {
+  return d.v_y[i] == 0.0 && !(d.v_x[i] == 0.0 && d.omega[i] == 0.0);
+}
+
+// Rows i .. i+3 (all packet_row): adds each residual's [J r] outer product to the lower triangle
+// `gram` (row-major (N+1) x (N+1), a lane per row) and the squared residuals to sum_sq in row
+// order, as the scalar pass would. False if a residual or derivative is not finite.
+template <int N>
+FRICTIONID_PACKET_INLINE bool packet_rows(const ResidualRows& rows, const PacketParams<N>& p,
+                                          std::size_t i, Lanes* gram, double& sum_sq) {
+  const Dataset& d = *rows.data;
+  // The slip geometry of each row, as approximant_resultants takes it (slip_geometry).
+  Lanes f_t{}, ca_n{}, s_n{}, s_nr{}, nr_rho{}, y_t0{}, y_t1{}, y_p0{}, y_p1{}, ph{}, pc{}, g_e{},
+      g_f{}, g_g{};
+  for (int l = 0; l < kLanes; ++l) {
+    const model::Kinematics k{d.v_x[i + l], d.v_y[i + l], d.omega[i + l], d.N[i + l], d.R[i + l]};
+    const model::SlipGeometry g = model::slip_geometry(k);
+    const double eps = g.eps, s = g.spin_sign;
+    const bool small = eps <= 1.0;
+    const double ee = eps * eps, q = small ? 0.0 : g.inv_eps, inv2 = q * q;
+    f_t[l] = small ? eps : 1.0;
+    ca_n[l] = f_t[l] * g.cos_alpha * k.N;
+    s_n[l] = s * k.N;
+    s_nr[l] = s * k.N * k.R;
+    nr_rho[l] = k.N * k.R * p.rho_roll;
+    // y_t = small ? e2 + a : 1 + a inv2; y_p's first factor small ? 1 + b e2 : inv2 + b.
+    y_t0[l] = small ? ee : 1.0;
+    y_t1[l] = small ? 1.0 : inv2;
+    y_p0[l] = small ? 1.0 : inv2;
+    y_p1[l] = small ? ee : 1.0;
+    ph[l] = small ? eps : q;      // the seed's p_hat factor
+    pc[l] = small ? 1.0 : q;      // the corrected form's
+    g_e[l] = small ? 1.0 : inv2;  // g = g_g / sqrt(g_e + m g_f)
+    g_f[l] = small ? ee : 1.0;
+    g_g[l] = small ? 1.0 : q;
+  }
+  const Dual<N> y_t = affine(y_t0, p.a, y_t1);
+  const Dual<N> c_p = affine(y_p0, p.b, y_p1);
+  const Dual<N> y_p = p.seed ? mul(c_p, y_t) : c_p;
+  const Dual<N> p_hat = p.seed ? mul(inv_sqrt(y_p), ph) : mul(p.p0, mul(inv_sqrt(y_p), pc));
+  const Dual<N> t = mul(inv_sqrt(y_t), ca_n);
+  // small: inv_sqrt(1 + m e2) as it is; large: q inv_sqrt(inv2 + m), the factor 1 exact.
+  const Dual<N> g_aligned = mul(inv_sqrt(affine(g_e, p.m, g_f)), g_g);
+  Dual<N> out[kChannelCount];
+  out[static_cast<int>(Channel::T_x)] = mul(p.f, t);
+  out[static_cast<int>(Channel::T_y)] = mul(p.fkh, mul(p_hat, s_n));
+  out[static_cast<int>(Channel::M_z)] = mul(p.spin, mul(g_aligned, s_nr));
+  out[static_cast<int>(Channel::M_roll)] = mul(p.h, nr_rho);
+
+  // Residuals (model - measured) w, w = 1/sigma; 0 where the channel is not measured.
+  const std::size_t nc = rows.channels.size();
+  Dual<N> res[kChannelCount];
+  for (std::size_t j = 0; j < nc; ++j) {
+    const Channel c = rows.channels[j];
+    const int ci = static_cast<int>(c);
+    Lanes w, value;
+    std::int64_t present[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      w[l] = rows.inverse_sigma(c, i + l);
+      present[l] = d.present[ci][i + l] != 0 ? -1 : 0;
+      value[l] = present[l] ? d.value[ci][i + l] : 0.0;
+    }
+    typedef std::int64_t Mask __attribute__((vector_size(kLanes * sizeof(std::int64_t))));
+    const Mask m{present[0], present[1], present[2], present[3]};
+    const Lanes zero = broadcast(0.0);
+    // (pred - value) w where measured, exactly 0 where not, whatever the model gives there.
+    Dual<N>& r = res[j];
+    r.a = m ? (out[ci].a - value) * w : zero;
+    for (int k = 0; k < N; ++k) r.v[k] = m ? out[ci].v[k] * w : zero;
+  }
+  // Finite everywhere, or the pass fails (Ceres then rejects the step).
+  for (std::size_t j = 0; j < nc; ++j) {
+    Lanes all = res[j].a * 0.0;
+    for (int k = 0; k < N; ++k) all += res[j].v[k] * 0.0;
+    for (int l = 0; l < kLanes; ++l)
+      if (!(all[l] == 0.0)) return false;
+  }
+  for (int l = 0; l < kLanes; ++l)
+    for (std::size_t j = 0; j < nc; ++j) sum_sq += res[j].a[l] * res[j].a[l];
+  // Lower triangle of [J r]^T [J r], column r last.
+  for (std::size_t j = 0; j < nc; ++j) {
+    const Dual<N>& r = res[j];
+    Lanes col[N + 1];
+    for (int k = 0; k < N; ++k) col[k] = r.v[k];
+    col[N] = r.a;
+    Lanes* g = gram;
+    for (int x = 0; x <= N; ++x)
+      for (int y = 0; y <= x; ++y) *g++ += col[x] * col[y];
+  }
+  return true;
+}
+
+}  // namespace frictionid::packets
