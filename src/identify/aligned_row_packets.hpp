@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include <immintrin.h>
 
@@ -30,8 +31,23 @@ namespace frictionid::packets {
 constexpr int kLanes = 4;
 typedef double Lanes __attribute__((vector_size(kLanes * sizeof(double))));
 
+typedef std::int64_t Mask __attribute__((vector_size(kLanes * sizeof(std::int64_t))));
+
 FRICTIONID_PACKET_INLINE Lanes broadcast(double x) {
   return Lanes{x, x, x, x};
+}
+
+// Four consecutive values of a column.
+FRICTIONID_PACKET_INLINE Lanes load(const double* x) {
+  Lanes r;
+  std::memcpy(&r, x, sizeof r);
+  return r;
+}
+
+// fabs of each lane: the sign bit cleared (-0 too).
+FRICTIONID_PACKET_INLINE Lanes abs(Lanes x) {
+  const std::int64_t magnitude = 0x7fffffffffffffff;
+  return reinterpret_cast<Lanes>(reinterpret_cast<Mask>(x) & magnitude);
 }
 
 // Square roots of the four lanes in one instruction. The packet pass runs only where the
@@ -157,31 +173,25 @@ template <int N>
 FRICTIONID_PACKET_INLINE bool packet_rows(const ResidualRows& rows, const PacketParams<N>& p,
                                           std::size_t i, Lanes* gram, double& sum_sq) {
   const Dataset& d = *rows.data;
-  // The slip geometry of each row, as approximant_resultants takes it (slip_geometry).
-  Lanes f_t{}, ca_n{}, s_n{}, s_nr{}, nr_rho{}, y_t0{}, y_t1{}, y_p0{}, y_p1{}, ph{}, pc{}, g_e{},
-      g_f{}, g_g{};
-  for (int l = 0; l < kLanes; ++l) {
-    const model::Kinematics k{d.v_x[i + l], d.v_y[i + l], d.omega[i + l], d.N[i + l], d.R[i + l]};
-    const model::SlipGeometry g = model::slip_geometry(k);
-    const double eps = g.eps, s = g.spin_sign;
-    const bool small = eps <= 1.0;
-    const double ee = eps * eps, q = small ? 0.0 : g.inv_eps, inv2 = q * q;
-    f_t[l] = small ? eps : 1.0;
-    ca_n[l] = f_t[l] * g.cos_alpha * k.N;
-    s_n[l] = s * k.N;
-    s_nr[l] = s * k.N * k.R;
-    nr_rho[l] = k.N * k.R * p.rho_roll;
-    // y_t = small ? e2 + a : 1 + a inv2; y_p's first factor small ? 1 + b e2 : inv2 + b.
-    y_t0[l] = small ? ee : 1.0;
-    y_t1[l] = small ? 1.0 : inv2;
-    y_p0[l] = small ? 1.0 : inv2;
-    y_p1[l] = small ? ee : 1.0;
-    ph[l] = small ? eps : q;      // the seed's p_hat factor
-    pc[l] = small ? 1.0 : q;      // the corrected form's
-    g_e[l] = small ? 1.0 : inv2;  // g = g_g / sqrt(g_e + m g_f)
-    g_f[l] = small ? ee : 1.0;
-    g_g[l] = small ? 1.0 : q;
-  }
+  // The slip geometry of the four rows as slip_geometry gives it for v_y = 0, lane by lane:
+  // u = |omega| R, v = |v_x|, eps = v/u (inf for u = 0), 1/eps = u/v (inf for v = 0).
+  const Lanes zero = broadcast(0.0), one = broadcast(1.0), inf = broadcast(HUGE_VAL);
+  const Lanes vx = load(&d.v_x[i]), om = load(&d.omega[i]), nn = load(&d.N[i]), rr = load(&d.R[i]);
+  const Lanes u = abs(om) * rr, v = abs(vx);
+  const Lanes eps = u > zero ? v / u : inf, inv_eps = v > zero ? u / v : inf;
+  const Lanes s = om > zero ? one : (om < zero ? -one : zero);
+  const Lanes ca = vx < zero ? -one : one;
+  const Mask small = eps <= one;
+  const Lanes ee = eps * eps, q = small ? zero : inv_eps, inv2 = q * q;
+  const Lanes f_t = small ? eps : one;
+  const Lanes ca_n = f_t * ca * nn, s_n = s * nn, s_nr = s * nn * rr, nr_rho = nn * rr * p.rho_roll;
+  // y_t = small ? e2 + a : 1 + a inv2; y_p's first factor small ? 1 + b e2 : inv2 + b.
+  const Lanes y_t0 = small ? ee : one, y_t1 = small ? one : inv2;
+  const Lanes y_p0 = small ? one : inv2, y_p1 = small ? ee : one;
+  const Lanes ph = small ? eps : q;  // the seed's p_hat factor
+  const Lanes pc = small ? one : q;  // the corrected form's
+  // g = g_g / sqrt(g_e + m g_f)
+  const Lanes g_e = small ? one : inv2, g_f = small ? ee : one, g_g = small ? one : q;
   const Dual<N> y_t = affine(y_t0, p.a, y_t1);
   const Dual<N> c_p = affine(y_p0, p.b, y_p1);
   const Dual<N> y_p = p.seed ? mul(c_p, y_t) : c_p;
@@ -201,16 +211,11 @@ FRICTIONID_PACKET_INLINE bool packet_rows(const ResidualRows& rows, const Packet
   for (std::size_t j = 0; j < nc; ++j) {
     const Channel c = rows.channels[j];
     const int ci = static_cast<int>(c);
-    Lanes w, value;
-    std::int64_t present[kLanes];
-    for (int l = 0; l < kLanes; ++l) {
-      w[l] = rows.inverse_sigma(c, i + l);
-      present[l] = d.present[ci][i + l] != 0 ? -1 : 0;
-      value[l] = present[l] ? d.value[ci][i + l] : 0.0;
-    }
-    typedef std::int64_t Mask __attribute__((vector_size(kLanes * sizeof(std::int64_t))));
-    const Mask m{present[0], present[1], present[2], present[3]};
-    const Lanes zero = broadcast(0.0);
+    const std::uint8_t* pr = &d.present[ci][i];
+    const Mask m{pr[0] ? -1 : 0, pr[1] ? -1 : 0, pr[2] ? -1 : 0, pr[3] ? -1 : 0};
+    // w = 1/sigma (inverse_sigma of residuals.hpp); unmeasured lanes are masked out below.
+    const Lanes w = d.has_sigma(c) ? one / load(&d.sigma[ci][i]) : broadcast(1.0 / rows.scale[ci]);
+    const Lanes value = m ? load(&d.value[ci][i]) : zero;
     // (pred - value) w where measured, exactly 0 where not, whatever the model gives there.
     Dual<N>& r = res[j];
     r.a = m ? (out[ci].a - value) * w : zero;
