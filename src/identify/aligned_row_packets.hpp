@@ -166,12 +166,11 @@ inline bool packet_row(const Dataset& d, std::size_t i) {
   return d.v_y[i] == 0.0 && !(d.v_x[i] == 0.0 && d.omega[i] == 0.0);
 }
 
-// Rows i .. i+3 (all packet_row): adds each residual's [J r] outer product to the lower triangle
-// `gram` (row-major (N+1) x (N+1), a lane per row) and the squared residuals to sum_sq in row
-// order, as the scalar pass would. False if a residual or derivative is not finite.
+// The residuals of rows i .. i+3 (all packet_row), a Dual per fitted channel in channel order
+// (lane l: row i + l). False if a residual or derivative is not finite.
 template <int N>
-FRICTIONID_PACKET_INLINE bool packet_rows(const ResidualRows& rows, const PacketParams<N>& p,
-                                          std::size_t i, Lanes* gram, double& sum_sq) {
+FRICTIONID_PACKET_INLINE bool packet_residuals(const ResidualRows& rows, const PacketParams<N>& p,
+                                               std::size_t i, Dual<N> (&res)[kChannelCount]) {
   const Dataset& d = *rows.data;
   // The slip geometry of the four rows as slip_geometry gives it for v_y = 0, lane by lane:
   // u = |omega| R, v = |v_x|, eps = v/u (inf for u = 0), 1/eps = u/v (inf for v = 0).
@@ -207,7 +206,6 @@ FRICTIONID_PACKET_INLINE bool packet_rows(const ResidualRows& rows, const Packet
 
   // Residuals (model - measured) w, w = 1/sigma; 0 where the channel is not measured.
   const std::size_t nc = rows.channels.size();
-  Dual<N> res[kChannelCount];
   for (std::size_t j = 0; j < nc; ++j) {
     const Channel c = rows.channels[j];
     const int ci = static_cast<int>(c);
@@ -228,6 +226,18 @@ FRICTIONID_PACKET_INLINE bool packet_rows(const ResidualRows& rows, const Packet
     for (int l = 0; l < kLanes; ++l)
       if (!(all[l] == 0.0)) return false;
   }
+  return true;
+}
+
+// Rows i .. i+3 (all packet_row): adds each residual's [J r] outer product to the lower triangle
+// `gram` ((N+1)(N+2)/2 entries, row by row, a lane per data row) and the squared residuals to
+// sum_sq in row order, as the scalar pass would. False if a residual or derivative is not finite.
+template <int N>
+FRICTIONID_PACKET_INLINE bool packet_rows(const ResidualRows& rows, const PacketParams<N>& p,
+                                          std::size_t i, Lanes* gram, double& sum_sq) {
+  Dual<N> res[kChannelCount];
+  if (!packet_residuals(rows, p, i, res)) return false;
+  const std::size_t nc = rows.channels.size();
   for (int l = 0; l < kLanes; ++l)
     for (std::size_t j = 0; j < nc; ++j) sum_sq += res[j].a[l] * res[j].a[l];
   // Lower triangle of [J r]^T [J r], column r last.

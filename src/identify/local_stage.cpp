@@ -193,6 +193,55 @@ __attribute__((target("avx2"))) bool gram_chunk_avx2(
   return gram_chunk<N, true>(p, model, pp, i0, i1, g, sum_sq);
 }
 
+// The residual rows [J r] of rows [i0, i1) into b (a row per residual, channels in order) and
+// their squared residuals summed into sum_sq: four rows at a time where packet_ahead holds and
+// pp is given. False if a residual or derivative is not finite.
+template <int N, bool kPackets>
+FRICTIONID_PACKET_INLINE bool fill_rows(const LocalProblem& p,
+                                        const ModelEvaluator<ceres::Jet<double, N>>& model,
+                                        const packets::PacketParams<N>* pp, std::size_t i0,
+                                        std::size_t i1,
+                                        Eigen::Matrix<double, Eigen::Dynamic, N + 1>& b,
+                                        double& sum_sq) {
+  const FitSettings& s = *p.settings;
+  const std::size_t nc = p.rows.channels.size();
+  ceres::Jet<double, N> buf[kChannelCount];
+  Eigen::Index row = 0;
+  double sum = 0.0;  // a local: sum_sq may share a cache line with another thread's
+  for (std::size_t i = i0; i < i1;) {
+    if constexpr (kPackets)
+      if (pp && packet_ahead(*p.rows.data, i, i1)) {
+        packets::Dual<N> res[kChannelCount];
+        if (!packets::packet_residuals(p.rows, *pp, i, res)) return false;
+        for (int l = 0; l < packets::kLanes; ++l)
+          for (std::size_t j = 0; j < nc; ++j, ++row) {
+            for (int k = 0; k < N; ++k) b(row, k) = res[j].v[k][l];
+            b(row, N) = res[j].a[l];
+            sum += res[j].a[l] * res[j].a[l];
+          }
+        i += packets::kLanes;
+        continue;
+      }
+    if (!row_residuals(p.rows, model, s.loss, s.loss_scale, i, buf)) return false;
+    for (std::size_t j = 0; j < nc; ++j, ++row) {
+      b.template leftCols<N>().row(row) = buf[j].v.transpose();
+      b(row, N) = buf[j].a;
+      sum += buf[j].a * buf[j].a;
+    }
+    ++i;
+  }
+  sum_sq = sum;
+  return true;
+}
+
+template <int N>
+__attribute__((target("avx2"))) bool fill_rows_avx2(
+    const LocalProblem& p, const ModelEvaluator<ceres::Jet<double, N>>& model,
+    const packets::PacketParams<N>* pp, std::size_t i0, std::size_t i1,
+    Eigen::Matrix<double, Eigen::Dynamic, N + 1>& b, double& sum_sq) {
+  return fill_rows<N, true>(p, model, pp, i0, i1, b, sum_sq);
+}
+
 // Autodiff passes with Jets as wide as the free parameters.
 template <int N>
 struct JetPasses {
@@ -215,25 +264,13 @@ struct JetPasses {
   }
 
   // Fills b with the chunk's rows; false if a residual or derivative is not finite.
-  static bool fill(const LocalProblem& p, const ModelEvaluator<Jet>& model, std::size_t c, Block& b,
-                   double& sum_sq) {
-    const FitSettings& s = *p.settings;
-    const std::size_t nc = p.rows.channels.size();
+  // (Rows of slip along x four at a time where pp is given: fill_rows.)
+  static bool fill(const LocalProblem& p, const ModelEvaluator<Jet>& model,
+                   const packets::PacketParams<N>* pp, std::size_t c, Block& b, double& sum_sq) {
     const std::size_t i0 = chunk_begin(p, c), i1 = chunk_end(p, c);
-    b.resize(static_cast<Eigen::Index>((i1 - i0) * nc), N + 1);
-    Jet buf[kChannelCount];
-    Eigen::Index row = 0;
-    double sum = 0.0;  // a local: sum_sq may share a cache line with another thread's
-    for (std::size_t i = i0; i < i1; ++i) {
-      if (!row_residuals(p.rows, model, s.loss, s.loss_scale, i, buf)) return false;
-      for (std::size_t j = 0; j < nc; ++j, ++row) {
-        b.template leftCols<N>().row(row) = buf[j].v.transpose();
-        b(row, N) = buf[j].a;
-        sum += buf[j].a * buf[j].a;
-      }
-    }
-    sum_sq = sum;
-    return true;
+    b.resize(static_cast<Eigen::Index>((i1 - i0) * p.rows.channels.size()), N + 1);
+    return pp ? fill_rows_avx2<N>(p, model, pp, i0, i1, b, sum_sq)
+              : fill_rows<N, false>(p, model, nullptr, i0, i1, b, sum_sq);
   }
 
   // One autodiff pass at x: reduce(c, b) turns chunk c's rows b into the chunk's result;
@@ -245,12 +282,13 @@ struct JetPasses {
     const auto pj = seeded(p, x);
     const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true),
                                     p.quadrature);
+    const auto pp = packet_params_for<N>(s, pj.data());
     const std::size_t chunks = problem_chunks(p);
     sum_sq.assign(chunks, 0.0);
     std::vector<char> good(chunks, 1);
     for_each_chunk(chunks, p.threads, [&](std::size_t c) {
       thread_local Block b;
-      if (fill(p, model, c, b, sum_sq[c]))
+      if (fill(p, model, pp ? &*pp : nullptr, c, b, sum_sq[c]))
         reduce(c, b);
       else
         good[c] = 0;

@@ -96,7 +96,8 @@ TEST(LocalStage, SeedAndCorrectedPacketPassesMatchCentralDifferences) {
                                             {0.0});
 }
 
-// The packet passes (AVX2) against the row-by-row passes on the same rows (allow_row_packets): the
+// The packet passes (AVX2) against the row-by-row passes on the same rows (allow_row_packets),
+// for the normal equations, the cost, the Jacobian's factor and the HC3 meat: the
 // sum of squares of all four passes to the bit, J^T J and J^T r to rounding (the lanes are summed
 // apart). Rows of slip along x in both directions, with and without spin, a sigma column,
 // unmeasured values, and a few oblique rows between them.
@@ -122,10 +123,27 @@ TEST(LocalStage, PacketPassAgreesWithTheRowByRowPass) {
     NormalEquations packed, scalar;
     ASSERT_TRUE(normal_equations(f.problem, x, packed));
     const double packed_cost = problem_cost(f.problem, x);
+    const Eigen::MatrixXd bread = packed.jtj.inverse();
+    const auto packed_factor = jacobian_factor(f.problem, x);
+    const auto packed_meat = sandwich_meat(f.problem, x, bread);
     allow_row_packets(false);
     ASSERT_TRUE(normal_equations(f.problem, x, scalar));
     const double scalar_cost = problem_cost(f.problem, x);
+    const auto scalar_factor = jacobian_factor(f.problem, x);
+    const auto scalar_meat = sandwich_meat(f.problem, x, bread);
     allow_row_packets(true);
+    // The Jacobian's triangular factor and the sandwich's meat see the same rows.
+    ASSERT_TRUE(packed_factor && scalar_factor && packed_meat && scalar_meat);
+    EXPECT_EQ(packed_factor->cost, scalar_factor->cost);
+    const Eigen::MatrixXd rtr_p = packed_factor->r.transpose() * packed_factor->r;
+    const Eigen::MatrixXd rtr_s = scalar_factor->r.transpose() * scalar_factor->r;
+    for (Eigen::Index a = 0; a < rtr_s.rows(); ++a)
+      for (Eigen::Index b = 0; b < rtr_s.cols(); ++b) {
+        const double scale = std::sqrt(rtr_s(a, a) * rtr_s(b, b));
+        EXPECT_NEAR(rtr_p(a, b), rtr_s(a, b), 1e-13 * scale);
+        EXPECT_NEAR((*packed_meat)(a, b), (*scalar_meat)(a, b),
+                    1e-12 * std::sqrt((*scalar_meat)(a, a) * (*scalar_meat)(b, b)));
+      }
     EXPECT_EQ(packed.rtr, scalar.rtr);
     EXPECT_EQ(packed.rtr, 2.0 * packed_cost);
     EXPECT_EQ(packed_cost, scalar_cost);
