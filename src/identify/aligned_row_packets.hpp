@@ -212,7 +212,8 @@ FRICTIONID_PACKET_INLINE bool packet_residuals(const ResidualRows& rows, const P
     const std::uint8_t* pr = &d.present[ci][i];
     const Mask m{pr[0] ? -1 : 0, pr[1] ? -1 : 0, pr[2] ? -1 : 0, pr[3] ? -1 : 0};
     // w = 1/sigma (inverse_sigma of residuals.hpp); unmeasured lanes are masked out below.
-    const Lanes w = d.has_sigma(c) ? one / load(&d.sigma[ci][i]) : broadcast(1.0 / rows.scale[ci]);
+    const double* sc = rows.sigma_column(c);
+    const Lanes w = sc ? one / load(sc + i) : broadcast(1.0 / rows.scale[ci]);
     const Lanes value = m ? load(&d.value[ci][i]) : zero;
     // (pred - value) w where measured, exactly 0 where not, whatever the model gives there.
     Dual<N>& r = res[j];

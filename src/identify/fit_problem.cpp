@@ -119,6 +119,8 @@ LocalProblem make_fit_problem(const Dataset& data, const FitSettings& s, FitResu
 
 LocalProblem problem_on(const LocalProblem& p, const Dataset& rows) {
   LocalProblem out = p;
+  // Replacement sigmas belong to p's rows: they go along only to a copy of them (bootstrap).
+  if (out.rows.sigma && rows.rows() != p.rows.data->rows()) out.rows.sigma = nullptr;
   out.rows.data = &rows;
   out.rows.begin = 0;
   out.rows.end = rows.rows();

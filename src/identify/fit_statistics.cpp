@@ -185,7 +185,7 @@ std::vector<int> add_fit_statistics(const LocalProblem& lp, const ParamVector& x
     res.cost = jf->cost;
   }
   const bool absolute_sigma = std::all_of(res.channels.begin(), res.channels.end(),
-                                          [&](Channel c) { return data.has_sigma(c); });
+                                          [&](Channel c) { return lp.rows.has_sigma(c); });
 
   // Observations: measured values of fitted channels (unmeasured cells hold residual 0).
   std::size_t nobs = 0;

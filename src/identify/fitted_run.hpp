@@ -2,7 +2,9 @@
 // parameters and optimum that a joint fit over several runs (joint_fit.hpp) starts from.
 #pragma once
 
+#include <array>
 #include <memory>
+#include <vector>
 
 #include <frictionid/dataset.hpp>
 #include <frictionid/fit_observer.hpp>
@@ -16,9 +18,9 @@ namespace frictionid {
 struct FittedRun {
   FitResult result;
   std::unique_ptr<FitSettings> settings;  // what problem.settings points at
-  // The rows with the estimated noise model's sigmas; null when no noise model was estimated,
-  // and then problem's rows point at the caller's dataset, which must outlive this.
-  std::unique_ptr<Dataset> weighted;
+  // The estimated noise model's sigmas (problem.rows.sigma points here); null when no noise
+  // model was estimated. problem's rows point at the caller's dataset, which must outlive this.
+  std::unique_ptr<std::array<std::vector<double>, kChannelCount>> noise_sigma;
   LocalProblem problem;  // whitened as the statistics saw it
   ParamVector x{};       // the optimum
 };

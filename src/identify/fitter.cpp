@@ -72,8 +72,10 @@ FittedRun fit_keeping_problem(const FitSettings& settings, const Dataset& data,
                   [&](Channel c) { return noise_estimated(s, data, c); })) {
     noise = refine_noise(lp, best, res, observer);
     best = noise.fit;
-    run.weighted = std::make_unique<Dataset>(std::move(noise.weighted));
-    run.problem = problem_on(lp, *run.weighted);
+    run.noise_sigma =
+        std::make_unique<std::array<std::vector<double>, kChannelCount>>(std::move(noise.sigma));
+    run.problem = lp;
+    run.problem.rows.sigma = run.noise_sigma.get();
     for (Channel c : run.problem.rows.channels) run.problem.rows.scale[static_cast<int>(c)] = 1.0;
     noise_terms = {noise.log_det, noise.parameters};
   }

@@ -59,7 +59,6 @@ NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, 
   const FitSettings& s = *lp.settings;
   const Dataset& data = *lp.rows.data;
   NoiseRefinement out;
-  out.weighted = data;
   out.fit = start;
   std::size_t nobs = 0;
   for (const auto& cs : res.channel_summaries) nobs += cs.rows;
@@ -83,7 +82,7 @@ NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, 
       ChannelStep& step = steps[k];
       const Channel c = cs.channel;
       const int ci = static_cast<int>(c);
-      auto& sigma = out.weighted.sigma[ci];
+      auto& sigma = out.sigma[ci];
       if (!noise_estimated(s, data, c)) return;
       std::vector<double> y, e;
       y.reserve(cs.rows);
@@ -139,7 +138,8 @@ NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, 
     }
     previous = noise;
     res.noise_iterations = it;
-    LocalProblem lw = problem_on(lp, out.weighted);
+    LocalProblem lw = lp;
+    lw.rows.sigma = &out.sigma;
     for (Channel c : lw.rows.channels) lw.rows.scale[static_cast<int>(c)] = 1.0;
     const LocalOutcome refit = local_fit(lw, out.fit.x, observer, it, s.noise_iterations);
     if (observer && observer->cancelled()) throw FitError("interrupted");

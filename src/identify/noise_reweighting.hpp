@@ -14,8 +14,10 @@ namespace frictionid {
 bool noise_estimated(const FitSettings& s, const Dataset& data, Channel c);
 
 struct NoiseRefinement {
-  Dataset weighted;      // the data with sigma columns from the noise model (every fitted channel)
-  LocalOutcome fit;      // the last local fit, on `weighted`
+  // The noise model's sigma of every row of each estimated channel (empty for the others, whose
+  // sigma columns stay): ResidualRows::sigma of the final problem.
+  std::array<std::vector<double>, kChannelCount> sigma;
+  LocalOutcome fit;      // the last local fit, weighted by `sigma`
   double log_det = 0.0;  // sum over observations of ln sigma_i^2 of the estimated channels
   int parameters = 0;    // noise parameters estimated
 };

@@ -21,12 +21,23 @@ struct ResidualRows {
   std::vector<Channel> channels;              // fitted channels (output order per row)
   std::array<double, kChannelCount> scale{};  // per-channel sigma when no sigma column
   std::size_t begin = 0, end = 0;             // rows [begin, end)
+  // Sigma columns that replace the dataset's (an estimated noise model's), row for row with
+  // data; null, or a channel's empty vector: the dataset's own.
+  const std::array<std::vector<double>, kChannelCount>* sigma = nullptr;
 
   std::size_t residual_count() const { return (end - begin) * channels.size(); }
+  // Channel c's sigma column, or null when it is whitened by scale.
+  const double* sigma_column(Channel c) const {
+    const int ci = static_cast<int>(c);
+    if (sigma && !(*sigma)[ci].empty()) return (*sigma)[ci].data();
+    return data->has_sigma(c) ? data->sigma[ci].data() : nullptr;
+  }
+  bool has_sigma(Channel c) const { return sigma_column(c) != nullptr; }
   double inverse_sigma(Channel c, std::size_t row) const {
     const int ci = static_cast<int>(c);
     if (!data->present[ci][row]) return 0.0;  // unmeasured: residual held at 0
-    return data->has_sigma(c) ? 1.0 / data->sigma[ci][row] : 1.0 / scale[ci];
+    const double* s = sigma_column(c);
+    return s ? 1.0 / s[row] : 1.0 / scale[ci];
   }
 };
 
