@@ -63,8 +63,10 @@ std::optional<packets::PacketParams<N>> packet_params_for(const FitSettings& s, 
       model::approximant_shape(model::law_moments(s.law)));
 }
 
-// Whether rows i .. i+3 of [i, end) all go in a packet.
-bool packet_ahead(const Dataset& d, std::size_t i, std::size_t end) {
+// Whether rows i .. i+3 of [i, end) all go in a packet. Inlined into the AVX2 passes: a call to
+// it, compiled for plain SSE2, from a loop with live 256-bit registers cost some processors (seen
+// on AMD Zen 3) more than the packet's arithmetic.
+FRICTIONID_PACKET_INLINE bool packet_ahead(const Dataset& d, std::size_t i, std::size_t end) {
   return i + packets::kLanes <= end && packets::packet_row(d, i) && packets::packet_row(d, i + 1) &&
          packets::packet_row(d, i + 2) && packets::packet_row(d, i + 3);
 }
