@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <mutex>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -91,6 +93,21 @@ bool spd_inverse(const Eigen::MatrixXd& h, Eigen::MatrixXd& out) {
   return true;
 }
 
+// Passes on only cancellation, which the runs fitted side by side poll from several threads:
+// progress lines of interleaved runs would mean nothing, and observers need not be thread-safe.
+class CancelOnlyObserver : public FitObserver {
+ public:
+  explicit CancelOnlyObserver(const FitObserver* inner) : inner_(inner) {}
+  bool cancelled() const override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return inner_ && inner_->cancelled();
+  }
+
+ private:
+  const FitObserver* inner_;
+  mutable std::mutex mutex_;
+};
+
 }  // namespace
 
 void check_shared_parameters(const FitSettings& s, const std::vector<std::string>& shared) {
@@ -121,27 +138,37 @@ JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
   }
   const int workers = resolve_thread_count(threads);
 
-  // 1. Every run alone: its optimum and the whitening its noise model gives.
-  std::vector<FittedRun> fits;
-  fits.reserve(inputs.size());
-  for (const auto& in : inputs) {
+  // 1. Every run alone: its optimum and the whitening its noise model gives. With at least as
+  // many runs as threads, one run per thread (a fit's bits do not depend on its thread count);
+  // the first failing run in input order is the one reported, whatever the schedule.
+  for (const auto& in : inputs)
     if (in.data == nullptr) throw std::invalid_argument("run " + in.label + ": no data");
+  const bool parallel_runs = inputs.size() >= static_cast<std::size_t>(workers);
+  std::vector<FittedRun> fits(inputs.size());
+  std::vector<std::exception_ptr> failed(inputs.size());
+  CancelOnlyObserver cancel_only(observer);
+  FitObserver* run_observer = parallel_runs && workers > 1 ? &cancel_only : observer;
+  for_each_task(inputs.size(), parallel_runs ? workers : 1, [&](std::size_t r) {
+    const JointRunInput& in = inputs[r];
     FitSettings s = in.settings;
-    s.threads = workers;
+    s.threads = parallel_runs ? 1 : workers;
     try {
-      fits.push_back(fit_keeping_problem(s, *in.data, observer));
+      fits[r] = fit_keeping_problem(s, *in.data, run_observer);
     } catch (const FitError& e) {
-      throw FitError("run " + in.label + ": " + e.what());
+      failed[r] = std::make_exception_ptr(FitError("run " + in.label + ": " + e.what()));
     } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("run " + in.label + ": " + e.what());
+      failed[r] =
+          std::make_exception_ptr(std::invalid_argument("run " + in.label + ": " + e.what()));
     }
-  }
+  });
+  if (observer && observer->cancelled()) throw FitError("interrupted");
+  for (const auto& f : failed)
+    if (f) std::rethrow_exception(f);
 
   // 2. One problem over all runs, from the common start.
   JointProblem jp;
   jp.shared = shared;
   jp.threads = workers;
-  const bool parallel_runs = inputs.size() >= static_cast<std::size_t>(workers);
   std::vector<double> start(shared.size());
   for (std::size_t j = 0; j < shared.size(); ++j) start[j] = common_start(fits, shared[j]);
   for (std::size_t r = 0; r < fits.size(); ++r) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include <frictionid/fitter.hpp>
@@ -173,6 +174,41 @@ TEST(JointFit, TheResultDoesNotDependOnTheThreadCount) {
       EXPECT_EQ(one.runs[r].parameters[i].std_error, two.runs[r].parameters[i].std_error);
     }
   EXPECT_EQ(one.cost, two.cost);
+}
+
+TEST(JointFit, AFailingRunIsReportedByItsLabelTheFirstInInputOrderOnAnyThreadCount) {
+  Campaign c = campaign(4, 0.01, 6, 100);
+  for (std::size_t r : {1u, 3u})  // nothing measured: no fit
+    for (auto& p : c.data[r].present) std::fill(p.begin(), p.end(), std::uint8_t{0});
+  for (int threads : {1, 2, 4}) {
+    try {
+      fit_joint(c.inputs(), {"kappa"}, threads);
+      ADD_FAILURE() << "no error on " << threads << " threads";
+    } catch (const std::exception& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("run load1: ", 0), 0u) << e.what();
+    }
+  }
+}
+
+// Cancels once the runs' own fits have begun, polled from whichever threads fit them.
+class CancelAfter : public FitObserver {
+ public:
+  explicit CancelAfter(int polls) : left_(polls) {}
+  bool cancelled() const override { return --left_ < 0; }
+
+ private:
+  mutable std::atomic<int> left_;
+};
+
+TEST(JointFit, ACancelledObserverStopsTheRunsFittedSideBySideWithInterrupted) {
+  const Campaign c = campaign(4, 0.01, 7, 200);
+  CancelAfter observer(3);
+  try {
+    fit_joint(c.inputs(), {"kappa"}, 2, &observer);
+    ADD_FAILURE() << "not interrupted";
+  } catch (const FitError& e) {
+    EXPECT_NE(std::string(e.what()).find("interrupted"), std::string::npos) << e.what();
+  }
 }
 
 TEST(JointFit, AnUnknownFixedOrUnreadSharedParameterIsRejectedNamingIt) {
