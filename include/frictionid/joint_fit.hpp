@@ -57,7 +57,9 @@ void check_shared_parameters(const FitSettings& s, const std::vector<std::string
 // their run's own fit (its noise model or sigma columns), so the joint covariance is absolute.
 // Throws std::invalid_argument, before any fit, where check_shared_parameters fails for a run
 // (naming the run); FitError when a run's own fit or the joint fit
-// fails (the message names the run) or the observer cancels.
+// fails (the message names the first such run) or the observer cancels. With at least as many
+// runs as threads the runs' own fits go one per thread, and meanwhile the observer is asked only
+// cancelled(), from those threads one at a time; the result does not depend on `threads`.
 JointFitResult fit_joint(const std::vector<JointRunInput>& runs,
                          const std::vector<std::string>& shared, int threads = 0,
                          FitObserver* observer = nullptr);
