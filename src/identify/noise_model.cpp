@@ -5,6 +5,8 @@
 #include <limits>
 #include <optional>
 
+#include "identify/log_sum.hpp"
+
 namespace frictionid {
 namespace {
 
@@ -23,18 +25,20 @@ struct SampleSums {
 
 SampleSums sample_sums(const std::vector<double>& y, const std::vector<double>& e) {
   SampleSums t;
+  LogSum log_y2;
   for (std::size_t i = 0; i < y.size(); ++i) {
     const double y2 = y[i] * y[i], e2 = e[i] * e[i];
     t.e2 += e2;
     if (y2 > 0.0) {
       ++t.nonzero;
-      t.log_y2 += std::log(y2);
+      log_y2.add(y2);
       t.e2_over_y2 += e2 / y2;
       t.min_y2 = std::min(t.min_y2, y2);
     } else {
       t.zero_e2 += e2;
     }
   }
+  t.log_y2 = log_y2.sum();
   return t;
 }
 
@@ -61,12 +65,14 @@ void set_score(ChannelNoise& n, double neg2_loglik, std::size_t rows, int parame
 
 void score(ChannelNoise& n, const std::vector<double>& y, const std::vector<double>& e,
            int parameters) {
+  LogSum log_v;
   double s = 0.0;
   for (std::size_t i = 0; i < y.size(); ++i) {
     const double v = std::max(variance(n, y[i]), kTiny);
-    s += std::log(v) + e[i] * e[i] / v;
+    log_v.add(v);
+    s += e[i] * e[i] / v;
   }
-  set_score(n, s, y.size(), parameters);
+  set_score(n, log_v.sum() + s, y.size(), parameters);
 }
 
 // The same sum where the variance is one constant a for every row.

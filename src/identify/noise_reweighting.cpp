@@ -7,6 +7,7 @@
 #include <frictionid/fitter.hpp>
 
 #include "identify/fit_problem.hpp"
+#include "identify/log_sum.hpp"
 #include "identify/noise_model.hpp"
 #include "identify/row_chunks.hpp"
 
@@ -102,12 +103,14 @@ NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, 
       const double floor = std::max(1e-15 * peak, 1e-300);
       sigma.assign(data.rows(), std::nan(""));
       double largest = 0.0;
+      LogSum log_sigma;
       for (std::size_t i = 0; i < data.rows(); ++i)
         if (data.present[ci][i]) {
           sigma[i] = std::max(noise_sigma(noise[ci], fitted[ci][i]), floor);
-          step.log_det += 2.0 * std::log(sigma[i]);
+          log_sigma.add(sigma[i]);
           largest = std::max(largest, sigma[i]);
         }
+      step.log_det = 2.0 * log_sigma.sum();
       // The channel's representative sigma: the RMS over its rows, relative to the largest.
       double sum2 = 0.0;
       for (std::size_t i = 0; i < data.rows(); ++i)
