@@ -1,16 +1,20 @@
 #include <frictionid/io/dataset_csv.hpp>
 
+#include <fcntl.h>
 #include <libfccp/csv.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <limits>
 #include <set>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 #include <frictionid/io/input_error.hpp>
@@ -436,6 +440,114 @@ const std::vector<std::string>& dataset_column_names() {
   return names;
 }
 
+namespace {
+
+// A bound on memory for an input without end (a pipe, `yes`): about 2 GB of rows.
+constexpr std::size_t kMaxRows = 20'000'000;
+
+void throw_too_many_rows(const std::string& path, std::size_t line_no) {
+  throw InputError(path, line_no, 0,
+                   "more than 20000000 rows; expected at most that many (split the data or "
+                   "subsample it)");
+}
+
+// Reads the data rows that `reader` has left into `data` (line numbers as the reader counts
+// them). `file_bytes`: the size the first row's length is scaled by to reserve the columns.
+void read_rows(io_detail::LineReader& reader, const Header& h, std::uintmax_t file_bytes,
+               bool require_channels, Dataset& data) {
+  const std::string& path = h.path;
+  std::vector<std::string_view> fields;
+  fields.reserve(32);
+  double value[kSlotCount] = {};
+  bool given[kSlotCount] = {};
+  while (char* line = reader.next_line()) {
+    const std::size_t line_no = reader.line_number();
+    const std::size_t length = reject_carriage_return(line, path, line_no);
+    split_fields(line, length, fields, path, line_no);
+    if (fields.size() == 1 && fields[0].empty()) continue;  // blank line
+    if (data.rows() == kMaxRows) throw_too_many_rows(path, line_no);
+    if (data.rows() == 0)
+      reserve_rows(data, estimate_rows(file_bytes, length, h.field_count()), h.has_sigma);
+    if (fields.size() != h.field_count()) {
+      const bool few = fields.size() < h.field_count();
+      throw InputError(path, line_no, (few ? fields.size() : h.field_count()) + 1,
+                       "row has " + std::to_string(fields.size()) + " fields, expected " +
+                           std::to_string(h.field_count()) + " as in the header" +
+                           (few ? std::string(" (the row ends early)")
+                                : "; first extra field " + shown(fields[h.field_count()])) +
+                           delimiter_hint(fields));
+    }
+    parse_row(h, fields, line_no, value, given);
+    check_row_channels(h, fields, line_no, value, given, require_channels);
+    append_row(h, fields, line_no, value, given, data);
+  }
+}
+
+// A regular file this large is read in parts side by side, one per hardware thread.
+constexpr std::uintmax_t kPartBytes = std::uintmax_t{1} << 20;
+
+// Where the parts after the first begin: the line starts nearest after equal shares of the
+// file; none for a small file, a pipe or one core.
+std::vector<std::uint64_t> part_starts(const std::string& path, std::uintmax_t file_bytes) {
+  std::vector<std::uint64_t> starts;
+  std::error_code ec;
+  if (file_bytes == static_cast<std::uintmax_t>(-1) || !std::filesystem::is_regular_file(path, ec))
+    return starts;
+  const unsigned hw = std::thread::hardware_concurrency();
+  const std::uintmax_t parts = std::min<std::uintmax_t>({hw, 8, file_bytes / kPartBytes});
+  if (parts < 2) return starts;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return starts;  // read in one part; the reader reports what is wrong
+  char block[4096];
+  for (std::uintmax_t k = 1; k < parts; ++k) {
+    std::uint64_t at = file_bytes / parts * k;
+    if (!starts.empty()) at = std::max(at, starts.back());
+    std::uint64_t start = 0;
+    for (;;) {
+      const ssize_t n = ::pread(fd, block, sizeof block, static_cast<off_t>(at));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      if (const void* lf = std::memchr(block, '\n', static_cast<std::size_t>(n))) {
+        start = at + static_cast<std::uint64_t>(static_cast<const char*>(lf) - block) + 1;
+        break;
+      }
+      at += static_cast<std::uint64_t>(n);
+    }
+    if (start == 0 || start >= file_bytes) break;
+    if (starts.empty() || start > starts.back()) starts.push_back(start);
+  }
+  ::close(fd);
+  return starts;
+}
+
+// One part of a file read on its own thread: its rows, numbered from its first line, and what
+// stopped it.
+struct Part {
+  Dataset data;
+  std::size_t lines = 0;  // lines it read, blank ones included
+  std::exception_ptr error;
+};
+
+// Appends part `p`, whose first line is line `base` + 1 of the file, to `data`.
+void append_part(Part& p, std::size_t base, Dataset& data) {
+  auto append = [](auto& to, auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+  for (std::size_t& l : p.data.line) l += base;
+  append(data.line, p.data.line);
+  for (auto [to, from] : {std::pair{&data.v_x, &p.data.v_x}, std::pair{&data.v_y, &p.data.v_y},
+                          std::pair{&data.omega, &p.data.omega}, std::pair{&data.N, &p.data.N},
+                          std::pair{&data.R, &p.data.R}})
+    append(*to, *from);
+  for (int c = 0; c < kChannelCount; ++c) {
+    append(data.value[c], p.data.value[c]);
+    append(data.present[c], p.data.present[c]);
+    append(data.sigma[c], p.data.sigma[c]);
+  }
+  for (std::size_t k = 0; k < data.extra_values.size(); ++k)
+    for (auto& v : p.data.extra_values[k]) data.extra_values[k].push_back(std::move(v));
+}
+
+}  // namespace
+
 Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns, bool require_channels) {
   lookup_names(columns);  // a bad column map is an error before the file is touched
   std::error_code ec;
@@ -455,33 +567,53 @@ Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns, bool
 
   std::error_code size_error;
   const std::uintmax_t file_bytes = std::filesystem::file_size(path, size_error);
-  double value[kSlotCount] = {};
-  bool given[kSlotCount] = {};
-  while (char* line = reader.next_line()) {
-    const std::size_t line_no = reader.line_number();
-    const std::size_t length = reject_carriage_return(line, path, line_no);
-    split_fields(line, length, fields, path, line_no);
-    if (fields.size() == 1 && fields[0].empty()) continue;  // blank line
-    // A bound on memory for an input without end (a pipe, `yes`): about 2 GB of rows.
-    constexpr std::size_t kMaxRows = 20'000'000;
-    if (data.rows() == kMaxRows)
-      throw InputError(path, line_no, 0,
-                       "more than 20000000 rows; expected at most that many (split the data or "
-                       "subsample it)");
-    if (data.rows() == 0)
-      reserve_rows(data, estimate_rows(file_bytes, length, h.field_count()), h.has_sigma);
-    if (fields.size() != h.field_count()) {
-      const bool few = fields.size() < h.field_count();
-      throw InputError(path, line_no, (few ? fields.size() : h.field_count()) + 1,
-                       "row has " + std::to_string(fields.size()) + " fields, expected " +
-                           std::to_string(h.field_count()) + " as in the header" +
-                           (few ? std::string(" (the row ends early)")
-                                : "; first extra field " + shown(fields[h.field_count()])) +
-                           delimiter_hint(fields));
+  // The parts after the first are read side by side with it; the first one then holds the
+  // whole file's rows, so it reserves for them.
+  std::vector<std::uint64_t> starts = part_starts(path, file_bytes);
+  if (!starts.empty() && !reader.stop_at(starts.front())) starts.clear();
+  std::vector<Part> parts(starts.size());
+  for (Part& p : parts) {
+    p.data.extra_names = data.extra_names;
+    p.data.extra_values.resize(data.extra_values.size());
+  }
+  std::vector<std::thread> threads;
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    threads.emplace_back([&, k] {
+      Part& p = parts[k];
+      try {
+        io_detail::LineReader r(path, starts[k]);
+        if (k + 1 < starts.size()) r.stop_at(starts[k + 1]);
+        read_rows(r, h, file_bytes / (starts.size() + 1), require_channels, p.data);
+        p.lines = r.line_number();
+      } catch (...) {
+        p.error = std::current_exception();
+      }
+    });
+  struct Join {
+    std::vector<std::thread>& threads;
+    ~Join() {
+      for (auto& t : threads) t.join();
     }
-    parse_row(h, fields, line_no, value, given);
-    check_row_channels(h, fields, line_no, value, given, require_channels);
-    append_row(h, fields, line_no, value, given, data);
+  } join{threads};
+  read_rows(reader, h, file_bytes, require_channels, data);
+  for (auto& t : threads) t.join();
+  threads.clear();
+
+  // The rows and the first error in file order, as one reader going through would meet them.
+  std::size_t base = reader.line_number();
+  for (Part& p : parts) {
+    if (data.rows() + p.data.rows() > kMaxRows)
+      throw_too_many_rows(path, base + p.data.line[kMaxRows - data.rows()]);
+    if (p.error) {
+      try {
+        std::rethrow_exception(p.error);
+      } catch (const InputError& e) {
+        if (e.line() == 0) throw;
+        throw InputError(e.file(), base + e.line(), e.column(), e.message());
+      }
+    }
+    append_part(p, base, data);
+    base += p.lines;
   }
   if (data.rows() == 0)
     throw InputError(path, 1, 0,

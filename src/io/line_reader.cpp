@@ -41,6 +41,27 @@ LineReader::LineReader(const std::string& path) : path_(path) {
   }
 }
 
+LineReader::LineReader(const std::string& path, std::uint64_t begin) : path_(path) {
+  do fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  while (fd_ < 0 && errno == EINTR);
+  if (fd_ < 0)
+    throw InputError(path, 0, 0, std::string("cannot open file: ") + std::strerror(errno));
+  if (::lseek(fd_, static_cast<off_t>(begin), SEEK_SET) < 0) {
+    const int e = errno;
+    ::close(fd_);
+    throw InputError(path, 0, 0, std::string("cannot read file: ") + std::strerror(e));
+  }
+  offset_ = begin;
+  capacity_ = kBlock;
+  buffer_.reset(new char[capacity_ + 1]);
+}
+
+bool LineReader::stop_at(std::uint64_t offset) {
+  if (offset_ > offset) return false;
+  limit_ = offset;
+  return true;
+}
+
 LineReader::~LineReader() {
   ::close(fd_);
 }
@@ -66,10 +87,17 @@ void LineReader::make_room() {
 bool LineReader::fill() {
   if (at_eof_) return false;
   make_room();
+  const std::size_t room =
+      static_cast<std::size_t>(std::min<std::uint64_t>(capacity_ - end_, limit_ - offset_));
+  if (room == 0) {  // at stop_at's offset (make_room leaves room otherwise)
+    at_eof_ = true;
+    return false;
+  }
   while (true) {
-    const ssize_t n = ::read(fd_, buffer_.get() + end_, capacity_ - end_);
+    const ssize_t n = ::read(fd_, buffer_.get() + end_, room);
     if (n > 0) {
       end_ += static_cast<std::size_t>(n);
+      offset_ += static_cast<std::uint64_t>(n);
       return true;
     }
     if (n == 0) {

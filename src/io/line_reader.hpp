@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -23,6 +24,10 @@ class LineReader {
 
   // Opens `path`; throws InputError "cannot open file: <reason>" when it cannot.
   explicit LineReader(const std::string& path);
+  // Reads the regular file `path` from byte offset `begin` (the start of a line) on, as if it
+  // began there: no byte-order mark is looked for, head() is empty, line numbers count from
+  // that line. For reading one part of a file while other parts are read elsewhere.
+  LineReader(const std::string& path, std::uint64_t begin);
   ~LineReader();
   LineReader(const LineReader&) = delete;
   LineReader& operator=(const LineReader&) = delete;
@@ -42,6 +47,11 @@ class LineReader {
   // input: what an encoding check looks at. A pipe cannot be opened a second time for them.
   const std::string& head() const { return head_; }
 
+  // Ends the input at file offset `offset` (the start of a line; bytes from there on are
+  // another reader's), so that next_line() returns nullptr there. False, and nothing changes,
+  // when bytes beyond it have already been read.
+  bool stop_at(std::uint64_t offset);
+
  private:
   bool fill();  // reads more input after end_; false at the end of the input
   void make_room();
@@ -55,6 +65,8 @@ class LineReader {
   std::size_t scanned_ = 0;   // bytes from begin_ on known to hold no LF
   std::size_t end_ = 0;       // one past the last byte read
   bool at_eof_ = false;
+  std::uint64_t offset_ = 0;                              // file offset of the byte after end_
+  std::uint64_t limit_ = static_cast<std::uint64_t>(-1);  // stop_at's offset
   std::size_t length_ = 0;
   std::size_t line_number_ = 0;
 };

@@ -552,5 +552,95 @@ TEST_F(DatasetCsv, BadNumberInChannelColumnRejected) {
   EXPECT_TRUE(Contains(rejected(q).what(), q + ":3:6: column 'M_z' has 'six'"));
 }
 
+// ---- a large file, read in parts side by side ----
+
+// About 8 MB of rows of every kind the reader meets: CRLF and LF line ends, blank lines,
+// quoted and padded fields, empty channel fields, sigma columns, a text column. Row i's omega is
+// i, so a row's place shows in its values.
+std::string varied_rows(std::size_t rows) {
+  std::string out = "v_x,omega,N,R,T_x,sigma_T_x,M_z,label\n";
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  char buf[256];
+  for (std::size_t i = 1; i <= rows; ++i) {
+    const int kind = static_cast<int>(i % 7);
+    const double x = u(rng);
+    if (kind == 3)
+      std::snprintf(buf, sizeof buf, "%.17g, %zu ,2000,0.05,,,%.6g,\"run \"\"%zu\"\"\"\r\n", x, i,
+                    x * 2, i % 5);
+    else
+      std::snprintf(buf, sizeof buf, "%.17g,%zu,%d,0.05,%.17g,%.3g,%s,run%zu\n", x, i, 1000 + kind,
+                    x * 0.7, 0.01 + (i % 3) * 0.001, kind == 5 ? "" : "1.25", i % 5);
+    out += buf;
+    if (i % 1001 == 0) out += i % 2 ? "\n" : "\r\n";  // blank lines
+  }
+  return out;
+}
+
+void expect_same(const Dataset& a, const Dataset& b) {
+  ASSERT_EQ(a.rows(), b.rows());
+  EXPECT_EQ(a.line, b.line);
+  for (auto [x, y] : {std::pair{&a.v_x, &b.v_x}, std::pair{&a.v_y, &b.v_y},
+                      std::pair{&a.omega, &b.omega}, std::pair{&a.N, &b.N}, std::pair{&a.R, &b.R}})
+    EXPECT_TRUE(*x == *y);
+  for (int c = 0; c < kChannelCount; ++c) {
+    EXPECT_EQ(a.present[c], b.present[c]);
+    // NaN where a channel is not measured: compared as bits.
+    const auto same_bits = [](const std::vector<double>& x, const std::vector<double>& y) {
+      return x.size() == y.size() &&
+             std::equal(x.begin(), x.end(), y.begin(),
+                        [](double p, double q) { return bits(p) == bits(q); });
+    };
+    EXPECT_TRUE(same_bits(a.value[c], b.value[c])) << c;
+    EXPECT_TRUE(same_bits(a.sigma[c], b.sigma[c])) << c;
+  }
+  EXPECT_EQ(a.extra_names, b.extra_names);
+  EXPECT_EQ(a.extra_values, b.extra_values);
+}
+
+TEST_F(DatasetCsv, ALargeFileReadsAsThroughAPipeRowForRow) {
+  const std::string content = varied_rows(130000);
+  ASSERT_GT(content.size(), 8u << 20);
+  const Dataset from_file = load_dataset_csv(write(content));
+  const Dataset from_pipe = load_piped(content);  // a pipe is read in one piece
+  expect_same(from_file, from_pipe);
+  EXPECT_EQ(from_file.omega.back(), 130000.0);
+  EXPECT_EQ(from_file.extra_values[0][2], "run \"3\"");
+}
+
+TEST_F(DatasetCsv, ALargeFileReportsItsFirstBadRowWithItsLineWhereverItIs) {
+  const std::string good = varied_rows(130000);
+  // The lines of rows 30,000, 70,000 and 110,000: in the first, a middle and the last part.
+  auto line_start = [&](std::size_t omega) {
+    const std::string key = "," + std::to_string(omega) + ",";
+    return good.find(key);
+  };
+  for (std::size_t bad_row : {110000u, 70000u, 30000u}) {
+    std::string content = good;
+    const std::size_t at = line_start(bad_row);
+    ASSERT_NE(at, std::string::npos);
+    content.replace(at + 1, std::to_string(bad_row).size(), "x" + std::to_string(bad_row));
+    // A second bad row later on never wins over the first.
+    const std::size_t later = line_start(119000);
+    content.replace(later + 1, 6, "y19000");
+    const std::string p = write(content, "bad" + std::to_string(bad_row) + ".csv");
+    const InputError e = rejected(p);
+    std::string piped;
+    try {
+      load_piped(content);
+    } catch (const InputError& pe) {
+      piped = pe.message();
+      EXPECT_EQ(e.line(), pe.line());
+    }
+    const std::size_t line = static_cast<std::size_t>(
+        std::count(content.begin(), content.begin() + static_cast<long>(at), '\n') + 1);
+    EXPECT_EQ(e.line(), line) << bad_row;
+    EXPECT_EQ(e.column(), 2u);
+    EXPECT_EQ(e.message(), piped);
+    EXPECT_TRUE(Contains(e.what(), p + ":" + std::to_string(line) + ":2: column 'omega' has 'x" +
+                                       std::to_string(bad_row) + "'"));
+  }
+}
+
 }  // namespace
 }  // namespace frictionid

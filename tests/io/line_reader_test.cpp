@@ -199,6 +199,35 @@ TEST(LineReader, PipeIsReadLikeAFile) {
   EXPECT_EQ(lines.back(), "end");
 }
 
+TEST(LineReader, APartFromAnOffsetToAStopHoldsExactlyTheLinesBetween) {
+  ScratchDir dir("line_reader_part");
+  // Lines longer than a read block, so the stop falls inside one: 300,000 bytes each.
+  std::string content;
+  for (char c : std::string("abcdef")) content += std::string(299999, c) + "\n";
+  const std::string path = write(dir, "\xEF\xBB\xBF" + content);
+  LineReader whole(path);
+  ASSERT_TRUE(whole.next_line());
+  ASSERT_TRUE(whole.stop_at(3 + 2 * 300000));  // before the third line
+  const char* second = whole.next_line();
+  ASSERT_TRUE(second);
+  EXPECT_EQ(std::string(second, whole.line_length()), std::string(299999, 'b'));
+  EXPECT_EQ(whole.next_line(), nullptr);
+  LineReader part(path, 3 + 2 * 300000);
+  EXPECT_EQ(part.head(), "");
+  EXPECT_TRUE(part.stop_at(3 + 4 * 300000));
+  EXPECT_EQ(all_lines(part), (Lines{std::string(299999, 'c'), std::string(299999, 'd')}));
+  LineReader rest(path, 3 + 5 * 300000);
+  EXPECT_EQ(all_lines(rest), (Lines{std::string(299999, 'f')}));
+}
+
+TEST(LineReader, StopAtBehindWhatIsReadIsRefusedAndChangesNothing) {
+  ScratchDir dir("line_reader_stop");
+  const std::string path = write(dir, "a\nb\nc\n");
+  LineReader reader(path);  // the first read takes the whole small file
+  EXPECT_FALSE(reader.stop_at(2));
+  EXPECT_EQ(all_lines(reader), (Lines{"a", "b", "c"}));
+}
+
 TEST(LineReader, MissingFileIsAnErrorWithTheSystemsReason) {
   ScratchDir dir("line_reader_missing");
   const std::string path = dir / "no.csv";

@@ -14,12 +14,15 @@ class InputError : public std::runtime_error {
       : std::runtime_error(format(file, line, column, what)),
         file_(std::move(file)),
         line_(line),
-        column_(column) {}
+        column_(column),
+        message_(what) {}
   explicit InputError(const std::string& what) : InputError("", 0, 0, what) {}
 
   const std::string& file() const { return file_; }
   std::size_t line() const { return line_; }
   std::size_t column() const { return column_; }
+  // What is wrong, without the place that what() puts in front of it.
+  const std::string& message() const { return message_; }
 
  private:
   static std::string format(const std::string& file, std::size_t line, std::size_t column,
@@ -32,6 +35,7 @@ class InputError : public std::runtime_error {
   std::string file_;
   std::size_t line_;
   std::size_t column_;
+  std::string message_;
 };
 
 }  // namespace frictionid
