@@ -166,11 +166,20 @@ inline bool packet_row(const Dataset& d, std::size_t i) {
   return d.v_y[i] == 0.0 && !(d.v_x[i] == 0.0 && d.omega[i] == 0.0);
 }
 
-// The residuals of rows i .. i+3 (all packet_row), a Dual per fitted channel in channel order
-// (lane l: row i + l). False if a residual or derivative is not finite.
-template <int N>
-FRICTIONID_PACKET_INLINE bool packet_residuals(const ResidualRows& rows, const PacketParams<N>& p,
-                                               std::size_t i, Dual<N> (&res)[kChannelCount]) {
+// What a packet's residuals need of its four rows (all packet_row), apart from the parameters:
+// the slip geometry and, per fitted channel in channel order, the measured value, the weight
+// and which lanes measure it. The fit's passes form it for every packet they evaluate; the global
+// stage, thousands of evaluations on the same few hundred rows, forms it once (RepeatedCost).
+// alignas: outside AVX2 code GCC aligns a 32-byte vector to 16 bytes only, so a heap copy made
+// there would not be where the AVX2 code's aligned loads expect it.
+struct alignas(32) PacketGeometry {
+  Lanes ca_n, s_n, s_nr, nr, y_t0, y_t1, y_p0, y_p1, ph, pc, g_e, g_f, g_g;
+  Lanes value[kChannelCount], w[kChannelCount];
+  Mask measured[kChannelCount];
+};
+
+FRICTIONID_PACKET_INLINE void packet_geometry(const ResidualRows& rows, std::size_t i,
+                                              PacketGeometry& g) {
   const Dataset& d = *rows.data;
   // The slip geometry of the four rows as slip_geometry gives it for v_y = 0, lane by lane:
   // u = |omega| R, v = |v_x|, eps = v/u (inf for u = 0), 1/eps = u/v (inf for v = 0).
@@ -183,42 +192,63 @@ FRICTIONID_PACKET_INLINE bool packet_residuals(const ResidualRows& rows, const P
   const Mask small = eps <= one;
   const Lanes ee = eps * eps, q = small ? zero : inv_eps, inv2 = q * q;
   const Lanes f_t = small ? eps : one;
-  const Lanes ca_n = f_t * ca * nn, s_n = s * nn, s_nr = s * nn * rr, nr_rho = nn * rr * p.rho_roll;
+  g.ca_n = f_t * ca * nn;
+  g.s_n = s * nn;
+  g.s_nr = s * nn * rr;
+  g.nr = nn * rr;
   // y_t = small ? e2 + a : 1 + a inv2; y_p's first factor small ? 1 + b e2 : inv2 + b.
-  const Lanes y_t0 = small ? ee : one, y_t1 = small ? one : inv2;
-  const Lanes y_p0 = small ? one : inv2, y_p1 = small ? ee : one;
-  const Lanes ph = small ? eps : q;  // the seed's p_hat factor
-  const Lanes pc = small ? one : q;  // the corrected form's
+  g.y_t0 = small ? ee : one;
+  g.y_t1 = small ? one : inv2;
+  g.y_p0 = small ? one : inv2;
+  g.y_p1 = small ? ee : one;
+  g.ph = small ? eps : q;  // the seed's p_hat factor
+  g.pc = small ? one : q;  // the corrected form's
   // g = g_g / sqrt(g_e + m g_f)
-  const Lanes g_e = small ? one : inv2, g_f = small ? ee : one, g_g = small ? one : q;
-  const Dual<N> y_t = affine(y_t0, p.a, y_t1);
-  const Dual<N> c_p = affine(y_p0, p.b, y_p1);
-  const Dual<N> y_p = p.seed ? mul(c_p, y_t) : c_p;
-  const Dual<N> p_hat = p.seed ? mul(inv_sqrt(y_p), ph) : mul(p.p0, mul(inv_sqrt(y_p), pc));
-  const Dual<N> t = mul(inv_sqrt(y_t), ca_n);
-  // small: inv_sqrt(1 + m e2) as it is; large: q inv_sqrt(inv2 + m), the factor 1 exact.
-  const Dual<N> g_aligned = mul(inv_sqrt(affine(g_e, p.m, g_f)), g_g);
-  Dual<N> out[kChannelCount];
-  out[static_cast<int>(Channel::T_x)] = mul(p.f, t);
-  out[static_cast<int>(Channel::T_y)] = mul(p.fkh, mul(p_hat, s_n));
-  out[static_cast<int>(Channel::M_z)] = mul(p.spin, mul(g_aligned, s_nr));
-  out[static_cast<int>(Channel::M_roll)] = mul(p.h, nr_rho);
-
-  // Residuals (model - measured) w, w = 1/sigma; 0 where the channel is not measured.
+  g.g_e = small ? one : inv2;
+  g.g_f = small ? ee : one;
+  g.g_g = small ? one : q;
   const std::size_t nc = rows.channels.size();
   for (std::size_t j = 0; j < nc; ++j) {
-    const Channel c = rows.channels[j];
-    const int ci = static_cast<int>(c);
+    const int ci = static_cast<int>(rows.channels[j]);
     const std::uint8_t* pr = &d.present[ci][i];
     const Mask m{pr[0] ? -1 : 0, pr[1] ? -1 : 0, pr[2] ? -1 : 0, pr[3] ? -1 : 0};
+    g.measured[j] = m;
     // w = 1/sigma (inverse_sigma of residuals.hpp); unmeasured lanes are masked out below.
-    const double* sc = rows.sigma_column(c);
-    const Lanes w = sc ? one / load(sc + i) : broadcast(1.0 / rows.scale[ci]);
-    const Lanes value = m ? load(&d.value[ci][i]) : zero;
+    const double* sc = rows.sigma_column(rows.channels[j]);
+    g.w[j] = sc ? one / load(sc + i) : broadcast(1.0 / rows.scale[ci]);
+    g.value[j] = m ? load(&d.value[ci][i]) : zero;
+  }
+}
+
+// The residuals of a packet, a Dual per fitted channel of `rows` in channel order (lane l: the
+// packet's row l). False if a residual or derivative is not finite.
+template <int N>
+FRICTIONID_PACKET_INLINE bool packet_residuals(const PacketGeometry& g, const ResidualRows& rows,
+                                               const PacketParams<N>& p,
+                                               Dual<N> (&res)[kChannelCount]) {
+  const Lanes zero = broadcast(0.0);
+  const Dual<N> y_t = affine(g.y_t0, p.a, g.y_t1);
+  const Dual<N> c_p = affine(g.y_p0, p.b, g.y_p1);
+  const Dual<N> y_p = p.seed ? mul(c_p, y_t) : c_p;
+  const Dual<N> p_hat = p.seed ? mul(inv_sqrt(y_p), g.ph) : mul(p.p0, mul(inv_sqrt(y_p), g.pc));
+  const Dual<N> t = mul(inv_sqrt(y_t), g.ca_n);
+  // small: inv_sqrt(1 + m e2) as it is; large: q inv_sqrt(inv2 + m), the factor 1 exact.
+  const Dual<N> g_aligned = mul(inv_sqrt(affine(g.g_e, p.m, g.g_f)), g.g_g);
+  Dual<N> out[kChannelCount];
+  out[static_cast<int>(Channel::T_x)] = mul(p.f, t);
+  out[static_cast<int>(Channel::T_y)] = mul(p.fkh, mul(p_hat, g.s_n));
+  out[static_cast<int>(Channel::M_z)] = mul(p.spin, mul(g_aligned, g.s_nr));
+  out[static_cast<int>(Channel::M_roll)] = mul(p.h, g.nr * p.rho_roll);
+
+  // Residuals (model - measured) w; 0 where the channel is not measured.
+  const std::size_t nc = rows.channels.size();
+  for (std::size_t j = 0; j < nc; ++j) {
+    const int ci = static_cast<int>(rows.channels[j]);
+    const Mask m = g.measured[j];
     // (pred - value) w where measured, exactly 0 where not, whatever the model gives there.
     Dual<N>& r = res[j];
-    r.a = m ? (out[ci].a - value) * w : zero;
-    for (int k = 0; k < N; ++k) r.v[k] = m ? out[ci].v[k] * w : zero;
+    r.a = m ? (out[ci].a - g.value[j]) * g.w[j] : zero;
+    for (int k = 0; k < N; ++k) r.v[k] = m ? out[ci].v[k] * g.w[j] : zero;
   }
   // Finite everywhere, or the pass fails (Ceres then rejects the step).
   for (std::size_t j = 0; j < nc; ++j) {
@@ -228,6 +258,15 @@ FRICTIONID_PACKET_INLINE bool packet_residuals(const ResidualRows& rows, const P
       if (!(all[l] == 0.0)) return false;
   }
   return true;
+}
+
+// The residuals of rows i .. i+3 (all packet_row), as above.
+template <int N>
+FRICTIONID_PACKET_INLINE bool packet_residuals(const ResidualRows& rows, const PacketParams<N>& p,
+                                               std::size_t i, Dual<N> (&res)[kChannelCount]) {
+  PacketGeometry g;
+  packet_geometry(rows, i, g);
+  return packet_residuals(g, rows, p, res);
 }
 
 // Rows i .. i+3 (all packet_row): adds each residual's [J r] outer product to the lower triangle

@@ -48,6 +48,7 @@ std::vector<ParamVector> global_starts(const LocalProblem& ps, const ParamVector
   // The search only ranks candidates: without a table the exact model may use a coarse rule.
   LocalProblem pg = ps;
   if (!pg.exact_table) pg.quadrature = &model::coarse_rule();
+  const RepeatedCost cost(pg);
   gp.objective = [&](const double* z) {
     ++evaluations;
     if (observer && evaluations % 250 == 0) {
@@ -57,7 +58,7 @@ std::vector<ParamVector> global_starts(const LocalProblem& ps, const ParamVector
       p.total = s.global_evaluations;
       observer->on_progress(p);
     }
-    return 2.0 * problem_cost(pg, from_search_point(s, ps.free, initial, z));  // sum of squares
+    return 2.0 * cost(from_search_point(s, ps.free, initial, z));  // sum of squares
   };
   const std::function<bool()> stop = [observer] { return observer && observer->cancelled(); };
   const GlobalSearchOutcome g = global_search(gp, s.global_algorithm, s.global_evaluations, s.seed,

@@ -71,22 +71,44 @@ FRICTIONID_PACKET_INLINE bool packet_ahead(const Dataset& d, std::size_t i, std:
          packets::packet_row(d, i + 2) && packets::packet_row(d, i + 3);
 }
 
+}  // namespace
+
+// The packets of a problem's rows as the passes meet them, each with its geometry formed once
+// (RepeatedCost).
+struct PacketRowCache {
+  std::vector<packets::PacketGeometry> geometry;  // in row order
+  std::vector<std::int32_t> packet_at;  // per row from rows.begin: its packet's index, or -1
+};
+
+namespace {
+
 // The squared residuals of rows [i0, i1) in plain doubles, summed row by row: four rows at a
-// time where packet_ahead holds and pp is given, one at a time otherwise. False if one is not
-// finite.
+// time where packet_ahead holds and pp is given, one at a time otherwise; a packet's geometry
+// from `cache` where given. False if one is not finite.
 template <bool kPackets>
 FRICTIONID_PACKET_INLINE bool sum_chunk(const LocalProblem& p, const ModelEvaluator<double>& model,
-                                        const packets::PacketParams<0>* pp, std::size_t i0,
-                                        std::size_t i1, double& sum_sq) {
+                                        const packets::PacketParams<0>* pp,
+                                        const PacketRowCache* cache, std::size_t i0, std::size_t i1,
+                                        double& sum_sq) {
   const FitSettings& s = *p.settings;
   const std::size_t nc = p.rows.channels.size();
-  packets::Lanes unused[1] = {packets::broadcast(0.0)};
   double buf[kChannelCount];
   double sum = 0.0;
   for (std::size_t i = i0; i < i1;) {
     if constexpr (kPackets)
-      if (pp && packet_ahead(*p.rows.data, i, i1)) {
-        if (!packets::packet_rows(p.rows, *pp, i, unused, sum)) return false;
+      if (pp &&
+          (cache ? cache->packet_at[i - p.rows.begin] >= 0 : packet_ahead(*p.rows.data, i, i1))) {
+        packets::Dual<0> res[kChannelCount];
+        const bool finite =
+            cache
+                ? packets::packet_residuals(
+                      cache->geometry[static_cast<std::size_t>(cache->packet_at[i - p.rows.begin])],
+                      p.rows, *pp, res)
+                : packets::packet_residuals(p.rows, *pp, i, res);
+        if (!finite) return false;
+        // Row by row, as the scalar pass adds them.
+        for (int l = 0; l < packets::kLanes; ++l)
+          for (std::size_t j = 0; j < nc; ++j) sum += res[j].a[l] * res[j].a[l];
         i += packets::kLanes;
         continue;
       }
@@ -99,21 +121,42 @@ FRICTIONID_PACKET_INLINE bool sum_chunk(const LocalProblem& p, const ModelEvalua
 }
 
 bool sum_chunk_baseline(const LocalProblem& p, const ModelEvaluator<double>& model,
-                        const packets::PacketParams<0>* pp, std::size_t i0, std::size_t i1,
-                        double& sum_sq) {
-  return sum_chunk<false>(p, model, pp, i0, i1, sum_sq);
+                        const packets::PacketParams<0>* pp, const PacketRowCache* cache,
+                        std::size_t i0, std::size_t i1, double& sum_sq) {
+  return sum_chunk<false>(p, model, pp, cache, i0, i1, sum_sq);
 }
 
 __attribute__((target("avx2"))) bool sum_chunk_avx2(const LocalProblem& p,
                                                     const ModelEvaluator<double>& model,
                                                     const packets::PacketParams<0>* pp,
-                                                    std::size_t i0, std::size_t i1,
-                                                    double& sum_sq) {
-  return sum_chunk<true>(p, model, pp, i0, i1, sum_sq);
+                                                    const PacketRowCache* cache, std::size_t i0,
+                                                    std::size_t i1, double& sum_sq) {
+  return sum_chunk<true>(p, model, pp, cache, i0, i1, sum_sq);
+}
+
+// The packets the passes over p's rows take (packet_ahead within each chunk), with their
+// geometry.
+__attribute__((target("avx2"))) void cache_packets_avx2(const LocalProblem& p,
+                                                        PacketRowCache& cache) {
+  cache.packet_at.assign(p.rows.end - p.rows.begin, -1);
+  for (std::size_t c = 0; c < problem_chunks(p); ++c) {
+    const std::size_t i1 = chunk_end(p, c);
+    for (std::size_t i = chunk_begin(p, c); i < i1;) {
+      if (packet_ahead(*p.rows.data, i, i1)) {
+        cache.packet_at[i - p.rows.begin] = static_cast<std::int32_t>(cache.geometry.size());
+        cache.geometry.emplace_back();
+        packets::packet_geometry(p.rows, i, cache.geometry.back());
+        i += packets::kLanes;
+      } else {
+        ++i;
+      }
+    }
+  }
 }
 
 // Sum of squared residuals over all rows in plain doubles; +inf if any is not finite.
-double sum_of_squares(const LocalProblem& p, const ParamVector& x) {
+double sum_of_squares(const LocalProblem& p, const ParamVector& x,
+                      const PacketRowCache* cache = nullptr) {
   const FitSettings& s = *p.settings;
   const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(p, x, false),
                                      p.quadrature);
@@ -123,7 +166,8 @@ double sum_of_squares(const LocalProblem& p, const ParamVector& x) {
   std::vector<double> part(chunks, 0.0);
   std::vector<char> good(chunks, 1);
   for_each_chunk(chunks, p.threads, [&](std::size_t c) {
-    if (!chunk_sum(p, model, pp ? &*pp : nullptr, chunk_begin(p, c), chunk_end(p, c), part[c]))
+    if (!chunk_sum(p, model, pp ? &*pp : nullptr, cache, chunk_begin(p, c), chunk_end(p, c),
+                   part[c]))
       good[c] = 0;
   });
   double total = 0.0;
@@ -527,6 +571,20 @@ void allow_row_packets(bool allow) {
 
 double problem_cost(const LocalProblem& p, const ParamVector& x) {
   return 0.5 * sum_of_squares(p, x);
+}
+
+RepeatedCost::RepeatedCost(const LocalProblem& p) : p_(p) {
+  // Where a pass would take packets at all (packet_params_for's conditions, x aside).
+  const FitSettings& s = *p.settings;
+  if (s.model == ModelKind::Exact || s.loss != LossKind::None || !packets::avx2_available()) return;
+  cache_ = std::make_unique<PacketRowCache>();
+  cache_packets_avx2(p, *cache_);
+}
+
+RepeatedCost::~RepeatedCost() = default;
+
+double RepeatedCost::operator()(const ParamVector& x) const {
+  return 0.5 * sum_of_squares(p_, x, cache_.get());
 }
 
 bool normal_equations(const LocalProblem& p, const ParamVector& x, NormalEquations& out) {

@@ -56,6 +56,23 @@ LocalOutcome local_fit(const LocalProblem& p, const ParamVector& start, FitObser
 // 1/2 sum of squared (robustified) residuals at x, or +inf where the model is not finite.
 double problem_cost(const LocalProblem& p, const ParamVector& x);
 
+// problem_cost at many x on the same rows, as the global stage asks for it: what the packet pass
+// needs of the rows (aligned_row_packets.hpp) is formed once, not at every x. The same bits as
+// problem_cost. p, its rows and its dataset must outlive it and stay as they are.
+struct PacketRowCache;
+class RepeatedCost {
+ public:
+  explicit RepeatedCost(const LocalProblem& p);
+  ~RepeatedCost();
+  RepeatedCost(const RepeatedCost&) = delete;
+  RepeatedCost& operator=(const RepeatedCost&) = delete;
+  double operator()(const ParamVector& x) const;
+
+ private:
+  const LocalProblem& p_;
+  std::unique_ptr<PacketRowCache> cache_;
+};
+
 // Whether the passes of the closed-form models may take rows of slip along x four at a time
 // where the processor has AVX2 (aligned_row_packets.hpp); on unless turned off. Off: every row
 // one at a time, the same costs to the bit. Process-wide; for tests and comparisons.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include <frictionid/synthetic_data.hpp>
@@ -152,6 +153,41 @@ TEST(LocalStage, PacketPassAgreesWithTheRowByRowPass) {
         EXPECT_NEAR(packed.jtj(a, b), scalar.jtj(a, b),
                     1e-13 * std::sqrt(scalar.jtj(a, a) * scalar.jtj(b, b)));
       EXPECT_NEAR(packed.jtr[a], scalar.jtr[a], 1e-13 * std::sqrt(scalar.jtj(a, a) * scalar.rtr));
+    }
+  }
+}
+
+// The global stage's cost with each packet's geometry formed once: problem_cost's bits, on rows
+// of every kind (packets, oblique rows between them, unmeasured values, a sigma column), for
+// both closed forms, a robust loss (no packets) and the exact model.
+TEST(LocalStage, RepeatedCostIsProblemCostToTheBit) {
+  struct Case {
+    ModelKind kind;
+    LossKind loss;
+  };
+  for (const Case& k :
+       {Case{ModelKind::Seed, LossKind::None}, Case{ModelKind::Corrected, LossKind::None},
+        Case{ModelKind::Seed, LossKind::Cauchy}, Case{ModelKind::Exact, LossKind::None}}) {
+    Fixture f;
+    make(f, k.kind, Law::hertz(), 1001, k.loss, {0.0});
+    Dataset& d = f.data;
+    for (std::size_t i = 0; i < d.rows(); ++i) {
+      if (i % 3 == 1) d.v_x[i] = -d.v_x[i];
+      if (i % 37 == 5) d.v_y[i] = 0.01;
+      if (i % 41 == 7) d.omega[i] = 0.0;
+      if (i % 13 == 3) d.present[static_cast<int>(Channel::M_z)][i] = 0;
+    }
+    d.sigma[static_cast<int>(Channel::T_y)].assign(d.rows(), 0.0);
+    for (std::size_t i = 0; i < d.rows(); ++i)
+      d.sigma[static_cast<int>(Channel::T_y)][i] = 2.0 + 0.01 * static_cast<double>(i % 31);
+    f.problem.rows.begin = 3;  // a problem on part of the rows, chunks not at row 0
+    const RepeatedCost cost(f.problem);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> scale(0.8, 1.2);
+    for (int trial = 0; trial < 20; ++trial) {
+      ParamVector x = f.truth;
+      for (int i : f.problem.free) x[i] *= scale(rng);
+      EXPECT_EQ(cost(x), problem_cost(f.problem, x)) << static_cast<int>(k.kind) << " " << trial;
     }
   }
 }
