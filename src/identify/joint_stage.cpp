@@ -18,10 +18,16 @@
 namespace frictionid {
 namespace {
 
-// The parameter values Ceres moves: one shared block and one own block per run.
+// The parameter values Ceres moves: one shared block and one own block per run. The own blocks
+// lie in one array in run order: Ceres orders the blocks of an elimination group by address,
+// and the reduced system's sums follow that order, so addresses from the heap (wherever earlier
+// work left room) would make the bits vary from one process to the next.
 struct JointState {
   std::vector<double> shared;
-  std::vector<std::vector<double>> own;
+  std::vector<double> own_values;
+  std::vector<std::size_t> own_begin;  // run r's block: own_values[own_begin[r] ..]
+  double* own(std::size_t r) { return own_values.data() + own_begin[r]; }
+  const double* own(std::size_t r) const { return own_values.data() + own_begin[r]; }
 };
 
 std::size_t own_count(const JointProblem& p, std::size_t r) {
@@ -32,7 +38,7 @@ ParamVector point_of(const JointProblem& p, const JointState& z, std::size_t r) 
   ParamVector x = p.start[r];
   const std::size_t ks = p.shared.size();
   for (std::size_t j = 0; j < ks; ++j) x[p.shared[j]] = z.shared[j];
-  for (std::size_t j = 0; j < own_count(p, r); ++j) x[p.runs[r].free[ks + j]] = z.own[r][j];
+  for (std::size_t j = 0; j < own_count(p, r); ++j) x[p.runs[r].free[ks + j]] = z.own(r)[j];
   return x;
 }
 
@@ -121,10 +127,11 @@ JointOutcome joint_local_fit(const JointProblem& p, FitObserver* observer) {
   const FitSettings& s0 = *p.runs[0].settings;
   JointState z;
   for (int i : p.shared) z.shared.push_back(p.start[0][i]);
-  z.own.resize(runs);
-  for (std::size_t r = 0; r < runs; ++r)
+  for (std::size_t r = 0; r < runs; ++r) {
+    z.own_begin.push_back(z.own_values.size());
     for (std::size_t j = 0; j < own_count(p, r); ++j)
-      z.own[r].push_back(p.start[r][p.runs[r].free[ks + j]]);
+      z.own_values.push_back(p.start[r][p.runs[r].free[ks + j]]);
+  }
 
   RunEvaluations evaluations(p, z);
   ceres::Problem::Options po;
@@ -135,7 +142,7 @@ JointOutcome joint_local_fit(const JointProblem& p, FitObserver* observer) {
     const int own = static_cast<int>(own_count(p, r));
     auto* cost = new RunCost(evaluations, r, static_cast<int>(ks), own);
     if (own > 0) {
-      problem.AddResidualBlock(cost, nullptr, z.shared.data(), z.own[r].data());
+      problem.AddResidualBlock(cost, nullptr, z.shared.data(), z.own(r));
       any_own = true;
     } else {
       problem.AddResidualBlock(cost, nullptr, z.shared.data());
@@ -154,8 +161,8 @@ JointOutcome joint_local_fit(const JointProblem& p, FitObserver* observer) {
   for (std::size_t r = 0; r < runs; ++r)
     for (std::size_t j = 0; j < own_count(p, r); ++j) {
       const auto& bound = p.runs[r].settings->params[p.runs[r].free[ks + j]];
-      problem.SetParameterLowerBound(z.own[r].data(), static_cast<int>(j), bound.lower);
-      problem.SetParameterUpperBound(z.own[r].data(), static_cast<int>(j), bound.upper);
+      problem.SetParameterLowerBound(z.own(r), static_cast<int>(j), bound.lower);
+      problem.SetParameterUpperBound(z.own(r), static_cast<int>(j), bound.upper);
     }
 
   // One thread: runs are spread over threads by the evaluation callback.
@@ -165,7 +172,7 @@ JointOutcome joint_local_fit(const JointProblem& p, FitObserver* observer) {
     o.linear_solver_type = ceres::DENSE_SCHUR;
     auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
     for (std::size_t r = 0; r < runs; ++r)
-      if (!z.own[r].empty()) ordering->AddElementToGroup(z.own[r].data(), 0);
+      if (own_count(p, r) > 0) ordering->AddElementToGroup(z.own(r), 0);
     ordering->AddElementToGroup(z.shared.data(), 1);
     o.linear_solver_ordering = ordering;
   } else {
