@@ -48,12 +48,16 @@ std::size_t problem_chunks(const LocalProblem& p) {
   return chunk_count(p.rows.end - p.rows.begin);
 }
 
-// The packet pass's parameters (aligned_row_packets.hpp) where it applies: a closed-form model
-// without a robust loss, on a processor with AVX2. params: doubles or Jets, in ParamVector order.
+// Whether the packet pass (aligned_row_packets.hpp) applies: a closed-form model without a
+// robust loss, on a processor with AVX2.
+bool packets_apply(const FitSettings& s) {
+  return s.model != ModelKind::Exact && s.loss == LossKind::None && packets::avx2_available();
+}
+
+// The packet pass's parameters where it applies. params: doubles or Jets, in ParamVector order.
 template <int N, typename T>
 std::optional<packets::PacketParams<N>> packet_params_for(const FitSettings& s, const T* params) {
-  if (s.model == ModelKind::Exact || s.loss != LossKind::None || !packets::avx2_available())
-    return std::nullopt;
+  if (!packets_apply(s)) return std::nullopt;
   const bool seed = s.model == ModelKind::Seed;
   const model::ApproximantParams<T> ap{
       params[kF], params[kKappa], params[kH], params[kA], seed ? params[kB] : params[kBTilde],
@@ -574,9 +578,7 @@ double problem_cost(const LocalProblem& p, const ParamVector& x) {
 }
 
 RepeatedCost::RepeatedCost(const LocalProblem& p) : p_(p) {
-  // Where a pass would take packets at all (packet_params_for's conditions, x aside).
-  const FitSettings& s = *p.settings;
-  if (s.model == ModelKind::Exact || s.loss != LossKind::None || !packets::avx2_available()) return;
+  if (!packets_apply(*p.settings)) return;
   cache_ = std::make_unique<PacketRowCache>();
   cache_packets_avx2(p, *cache_);
 }

@@ -14,10 +14,10 @@
 #include <limits>
 #include <set>
 #include <string_view>
-#include <thread>
 #include <vector>
 
 #include <frictionid/io/input_error.hpp>
+#include "identify/row_chunks.hpp"
 #include "io/encoding_sniffer.hpp"
 #include "io/huge_pages.hpp"
 #include "io/line_reader.hpp"
@@ -493,8 +493,8 @@ std::vector<std::uint64_t> part_starts(const std::string& path, std::uintmax_t f
   std::error_code ec;
   if (file_bytes == static_cast<std::uintmax_t>(-1) || !std::filesystem::is_regular_file(path, ec))
     return starts;
-  const unsigned hw = std::thread::hardware_concurrency();
-  const std::uintmax_t parts = std::min<std::uintmax_t>({hw, 8, file_bytes / kPartBytes});
+  const auto cores = static_cast<std::uintmax_t>(resolve_thread_count(0));
+  const std::uintmax_t parts = std::min<std::uintmax_t>({cores, 8, file_bytes / kPartBytes});
   if (parts < 2) return starts;
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return starts;  // read in one part; the reader reports what is wrong
@@ -576,28 +576,20 @@ Dataset load_dataset_csv(const std::string& path, const ColumnMap& columns, bool
     p.data.extra_names = data.extra_names;
     p.data.extra_values.resize(data.extra_values.size());
   }
-  std::vector<std::thread> threads;
-  for (std::size_t k = 0; k < parts.size(); ++k)
-    threads.emplace_back([&, k] {
-      Part& p = parts[k];
-      try {
-        io_detail::LineReader r(path, starts[k]);
-        if (k + 1 < starts.size()) r.stop_at(starts[k + 1]);
-        read_rows(r, h, file_bytes / (starts.size() + 1), require_channels, p.data);
-        p.lines = r.line_number();
-      } catch (...) {
-        p.error = std::current_exception();
-      }
-    });
-  struct Join {
-    std::vector<std::thread>& threads;
-    ~Join() {
-      for (auto& t : threads) t.join();
+  // Task 0 reads on from the header into `data` (its error, the first in file order, is thrown
+  // once every part has finished); task k opens the file at starts[k - 1] and keeps its error.
+  for_each_task(parts.size() + 1, static_cast<int>(parts.size()) + 1, [&](std::size_t k) {
+    if (k == 0) return read_rows(reader, h, file_bytes, require_channels, data);
+    Part& p = parts[k - 1];
+    try {
+      io_detail::LineReader r(path, starts[k - 1]);
+      if (k < starts.size()) r.stop_at(starts[k]);
+      read_rows(r, h, file_bytes / (starts.size() + 1), require_channels, p.data);
+      p.lines = r.line_number();
+    } catch (...) {
+      p.error = std::current_exception();
     }
-  } join{threads};
-  read_rows(reader, h, file_bytes, require_channels, data);
-  for (auto& t : threads) t.join();
-  threads.clear();
+  });
 
   // The rows and the first error in file order, as one reader going through would meet them.
   std::size_t base = reader.line_number();
