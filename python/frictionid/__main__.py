@@ -87,15 +87,16 @@ def run_batch(args: argparse.Namespace) -> int:
     from . import _frictionid, dask as fdask
 
     t_start = time.monotonic()
-    o = _frictionid.FitOptions()
-    for name in ("model", "pressure", "fix", "bounds", "loss", "channels", "columns",
-                 "noise_model", "intervals", "bootstrap", "starts", "seed", "global_evaluations",
-                 "global_subsample", "no_global", "global_algorithm", "threads"):
+    o = _frictionid.FitRequest()
+    for name in ("model", "pressure", "loss", "noise_model", "intervals", "bootstrap", "starts",
+                 "seed", "global_evaluations", "global_subsample", "no_global",
+                 "global_algorithm", "threads"):
         setattr(o, name, getattr(args, name))
-    o.initial = args.param
+    _frictionid.apply_fit_text(o, fix=args.fix, bounds=args.bounds, start=args.param,
+                               channels=args.channels, columns=args.columns)
     if os.path.exists(args.output) and not os.path.isdir(args.output):
         raise _frictionid.InputError(f"{args.output}: --output exists and is not a directory")
-    runs = fdask.plan(args.inputs, o, args.group_by)
+    runs = fdask.plan(args.inputs, o, _frictionid.name_list("--group-by", args.group_by))
     _frictionid.check_trend_x([run.spec for run in runs], args.trend_x)
     with_reports = args.per_run_reports == "json"
 

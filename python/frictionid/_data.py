@@ -4,7 +4,7 @@ library's Dataset."""
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING, Any, Mapping, Optional, Union
+from typing import TYPE_CHECKING, Any, Dict, Mapping, Optional, Union
 
 import numpy as np
 
@@ -23,9 +23,9 @@ CHANNELS = ("T_x", "T_y", "M_z", "M_roll")
 DataLike = Union[str, "os.PathLike[str]", Mapping[str, Any], Any]
 
 
-def column_spec(columns: Optional[Mapping[str, str]]) -> str:
-    """{"v_x": "speed"} -> "v_x=speed", the command line's --columns."""
-    return ",".join(f"{k}={v}" for k, v in (columns or {}).items())
+def column_map(columns: Optional[Mapping[str, str]]) -> Dict[str, str]:
+    """canonical -> header, checked as the command line's --columns (names, hints, messages)."""
+    return _frictionid.column_map({str(k): str(v) for k, v in (columns or {}).items()})
 
 
 def load(data: DataLike, columns: Optional[Mapping[str, str]] = None) -> "_frictionid.Dataset":
@@ -37,14 +37,13 @@ def load(data: DataLike, columns: Optional[Mapping[str, str]] = None) -> "_frict
     if isinstance(data, _frictionid.Dataset):
         return data
     if isinstance(data, (str, os.PathLike)):
-        return _frictionid.load_dataset_csv(os.fspath(data), column_spec(columns))
+        return _frictionid.load_dataset_csv(os.fspath(data), column_map(columns))
     if not hasattr(data, "keys"):
         raise TypeError(
             "data must be a CSV path, a pandas DataFrame or a dict of arrays, "
             f"not {type(data).__name__}")
     source = "DataFrame" if hasattr(data, "iloc") else "dict"
-    # Checked by the command line's --columns parser: the same names, hints and messages.
-    header_of = _frictionid.parse_column_map(column_spec(columns))
+    header_of = column_map(columns)
     arrays = {}
     for name in COLUMNS:
         key = header_of.get(name, name)

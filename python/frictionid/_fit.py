@@ -7,6 +7,8 @@ from typing import Iterable, Mapping, Optional, Sequence, Tuple, Union
 from . import _data, _frictionid, _options
 from ._result import FitResult
 
+MAX_SEED = 2**32 - 1  # as `frictionid fit --seed`: NLopt keeps 32 bits of a seed
+
 
 def fit(
     data: _data.DataLike,
@@ -98,24 +100,25 @@ def options(
     global_evaluations: int = 3000,
     global_subsample: int = 400,
     columns: Optional[Mapping[str, str]] = None,
-) -> "_frictionid.FitOptions":
-    """The command line's fit options for :func:`fit`'s keyword arguments (``columns`` becomes
-    ``--columns``, which only a file reader uses)."""
-    o = _frictionid.FitOptions()
+) -> "_frictionid.FitRequest":
+    """The fit request (src/app/requests.hpp) for :func:`fit`'s keyword arguments, checked by
+    the command line's code when the fit runs (``request.check()`` checks it at once)."""
+    o = _frictionid.FitRequest()
     o.model = model
     o.pressure = pressure
-    o.fix = _options.assignments(fix)
+    o.fix = _options.values("--fix", fix)
     o.bounds = _options.bounds(bounds)
-    o.initial = _options.assignments(start)
+    o.start = _options.values("--param", start)
     o.loss = _options.loss(loss)
     o.channels = _options.names(channels)
     o.noise_model = noise_model
-    o.seed = seed
+    o.seed = _options.whole_number("--seed", seed, 0, MAX_SEED)
     o.threads = threads
     o.starts = starts
     o.no_global = not global_search
     o.global_algorithm = global_algorithm
     o.global_evaluations = global_evaluations
-    o.global_subsample = global_subsample
-    o.columns = _data.column_spec(columns)
+    o.global_subsample = _options.whole_number("--global-subsample", global_subsample, 1,
+                                               10**9)
+    o.columns = dict(columns or {})
     return o

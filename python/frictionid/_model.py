@@ -48,7 +48,7 @@ def evaluate(
                                    (v_x, v_y, omega, N, R)))
     shape = arrays[0].shape
     flat = [np.ascontiguousarray(a.reshape(-1)) for a in arrays]
-    out = _frictionid.evaluate(model, pressure, _options.assignments(params), *flat)
+    out = _frictionid.evaluate(model, pressure, _options.values("--param", params), *flat)
     return {k: v.reshape(shape) for k, v in out.items()}
 
 
@@ -105,13 +105,16 @@ def generate(
         A pandas DataFrame with the canonical columns; ``df.attrs["truth"]`` holds the
         parameters it was made with.
     """
-    out = _frictionid.generate(model, pressure, _options.assignments(params), rows, noise,
-                               noise_abs, sigma_columns, seed, eps_min, eps_max,
+    out = _frictionid.generate(model, pressure, _options.values("--param", params),
+                               _options.whole_number("--rows", rows, 1, 10**7), noise,
+                               noise_abs, sigma_columns,
+                               _options.whole_number("--seed", seed, 0, 2**64 - 1), eps_min,
+                               eps_max,
                                [float(x) for x in loads], R, spin,
                                [float(x) for x in slip_angles_deg], forward_only)
     df = _data.frame(out["columns"])
-    df.attrs["truth"] = dict(out["parameters"])
-    df.attrs["pressure"] = out["pressure"]
+    df.attrs["truth"] = dict(out["truth"]["parameters"])
+    df.attrs["pressure"] = out["truth"]["pressure"]
     return df
 
 
@@ -150,7 +153,7 @@ def simulate(
         trajectory) "trajectory", a pandas DataFrame of t, v_x, v_y, omega, eps, T_x, T_y,
         M_z, energy.
     """
-    out = dict(_frictionid.simulate(model, pressure, _options.assignments(params),
+    out = dict(_frictionid.simulate(model, pressure, _options.values("--param", params),
                                     inertia_ratio, v0, omega0, slip_angle_deg, mass, R, N, tol,
                                     stop_fraction, max_steps, trajectory))
     if trajectory:

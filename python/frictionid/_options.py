@@ -1,52 +1,73 @@
-"""Python option values as the command line's option text, so that the C++ side parses and
-checks them with the command line's own code (and messages). Floats are written with repr(),
-which reads back as the same double."""
+"""Python option values as the typed fields of the C++ requests (src/app/requests.hpp): dicts of
+numbers, (lower, upper) pairs, lists of names. The C++ side checks them with the command line's
+own code, so the messages are the same."""
 
 from __future__ import annotations
 
-from typing import Iterable, Mapping, Optional, Sequence, Tuple, Union
+import numbers
+import operator
+from typing import Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
-Number = Union[float, int, str]
+from . import _frictionid
 
-
-def number(value: Number) -> str:
-    if isinstance(value, str):
-        return value
-    text = repr(float(value))
-    # "2.0" -> "2": messages then quote what a user would have typed on the command line.
-    return text[:-2] if text.endswith(".0") else text
+Number = Union[float, int]
 
 
-def assignments(values: Optional[Mapping[str, Number]]) -> str:
-    """{"kappa": 1.0} -> "kappa=1.0" (--fix, --param)."""
-    return ",".join(f"{name}={number(v)}" for name, v in (values or {}).items())
+def _float(option: str, name: str, value: object) -> float:
+    if isinstance(value, (bool, complex)) or not isinstance(value, numbers.Real):
+        raise _frictionid.InputError(
+            f"{option}: value for '{name}' is {value!r}; expected a real number")
+    return float(value)
 
 
-def bounds(values: Optional[Mapping[str, Tuple[Number, Number]]]) -> str:
-    """{"f": (0.1, 2)} -> "f=0.1:2.0" (--bounds)."""
-    out = []
-    for name, pair in (values or {}).items():
+def values(option: str, given: Optional[Mapping[str, Number]]) -> Dict[str, float]:
+    """{"kappa": 1} -> {"kappa": 1.0} (--fix, --param): real numbers only."""
+    return {str(name): _float(option, name, v) for name, v in (given or {}).items()}
+
+
+def bounds(given: Optional[Mapping[str, Tuple[Optional[Number], Optional[Number]]]]
+           ) -> Dict[str, Tuple[float, float]]:
+    """{"f": (0.1, 2)} -> {"f": (0.1, 2.0)} (--bounds)."""
+    out = {}
+    for name, pair in (given or {}).items():
         try:
             lower, upper = pair
         except (TypeError, ValueError):
-            raise ValueError(
-                f"bounds: {name} needs a (lower, upper) pair, not {pair!r}") from None
-        out.append(f"{name}={number(lower)}:{number(upper)}")
-    return ",".join(out)
+            raise _frictionid.InputError(
+                f"--bounds: {name} needs a (lower, upper) pair, not {pair!r}") from None
+        out[str(name)] = (_float("--bounds", name, lower), _float("--bounds", name, upper))
+    return out
 
 
-def names(values: Optional[Union[str, Iterable[str]]]) -> str:
-    """["T_x", "M_z"] -> "T_x,M_z" (--channels)."""
-    if values is None:
-        return ""
-    if isinstance(values, str):
-        return values
-    return ",".join(values)
+def names(given: Optional[Union[str, Iterable[str]]]) -> List[str]:
+    """["T_x", "M_z"] or "T_x,M_z" -> ["T_x", "M_z"] (--channels, --group-by)."""
+    if given is None:
+        return []
+    if isinstance(given, str):
+        return [part.strip() for part in given.split(",")] if given.strip() else []
+    return [str(n) for n in given]
 
 
 def loss(value: Union[str, Sequence]) -> str:
-    """"huber:3" or ("huber", 3) -> "huber:3.0" (--loss)."""
+    """"huber:3" or ("huber", 3) -> "huber:3.0" (--loss: a kind and its scale)."""
     if isinstance(value, str):
         return value
     name, scale = value
-    return f"{name}:{number(scale)}"
+    return f"{name}:{_float('--loss', str(name), scale)!r}"
+
+
+def whole_number(option: str, value: object, low: int, high: int) -> int:
+    """An int in [low, high], with the command line's message otherwise (no wrap, no clamp)."""
+    if isinstance(value, bool):
+        value = str(value)
+    try:
+        number = operator.index(value)  # ints and numpy integers; not floats or strings
+    except TypeError:
+        raise _frictionid.InputError(
+            f"{option}: got '{value}' (not a whole number); expected a whole number from "
+            f"{low} to {high}") from None
+    if number < low or number > high:
+        why = "negative" if number < 0 else ("too small" if number < low else "too large")
+        raise _frictionid.InputError(
+            f"{option}: got '{number}' ({why}); expected a whole number from {low} to {high}")
+    return number

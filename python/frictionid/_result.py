@@ -40,7 +40,7 @@ class FitResult:
     def __init__(self, output: "_frictionid.FitOutput", model: str, pressure: str) -> None:
         self._output = output
         self._pressure_spec = pressure
-        self.report: Dict[str, Any] = json.loads(output.report_json())
+        self.report: Dict[str, Any] = output.report()
         self.model: str = self.report["model"]
         self.pressure: str = self.report["pressure"]
         self.rows: int = self.report["rows"]

@@ -109,7 +109,7 @@ def fit_many(
     if _is_frame(inputs):
         runs = plan_frame(inputs, options, group_columns, fit_options.get("columns"))
     else:
-        runs = plan(_input_list(inputs), options, ",".join(group_columns))
+        runs = plan(_input_list(inputs), options, group_columns)
     outcome = run_on_cluster(runs, client, threads=threads, with_reports=with_reports,
                              retries=retries, n_workers=n_workers)
     csv_text, json_text, _ = _frictionid.summary_files(list(outcome.rows.values()))
@@ -123,7 +123,8 @@ def fit_many(
     return table
 
 
-def plan(inputs: List[str], options: "_frictionid.FitOptions", group_by: str) -> List[Run]:
+def plan(inputs: List[str], options: "_frictionid.FitRequest", group_by: List[str]
+         ) -> List[Run]:
     """The runs of ``frictionid batch INPUTS --group-by GROUP_BY``, from its own planner."""
     runs = []
     for spec in _frictionid.plan_batch_runs(inputs, options, group_by):
@@ -132,7 +133,7 @@ def plan(inputs: List[str], options: "_frictionid.FitOptions", group_by: str) ->
     return runs
 
 
-def plan_frame(frame: Any, options: "_frictionid.FitOptions", group_columns: List[str],
+def plan_frame(frame: Any, options: "_frictionid.FitRequest", group_columns: List[str],
                columns: Optional[Dict[str, str]] = None) -> List[Run]:
     """One run per group of a DataFrame's rows, labelled as ``--group-by`` labels a file's
     groups (the values joined by ``_``), rows in frame order, sorted by label."""
@@ -256,7 +257,7 @@ def _shortest(x: float) -> str:
 def _canonical_columns(part: Any, columns: Optional[Dict[str, str]]) -> Dict[str, Any]:
     import numpy as np
 
-    header_of = _frictionid.parse_column_map(_data.column_spec(columns))
+    header_of = _data.column_map(columns)
     out = {}
     for name in _data.COLUMNS:
         key = header_of.get(name, name)

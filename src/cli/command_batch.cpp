@@ -18,15 +18,16 @@
 #include <frictionid/io/report_writer.hpp>
 #include <frictionid/io/summary_html.hpp>
 #include <frictionid/io/summary_table.hpp>
-#include "cli/batch_fit_run.hpp"
-#include "cli/batch_journal.hpp"
-#include "cli/batch_runs.hpp"
-#include "cli/batch_shared_fit.hpp"
-#include "cli/batch_warm_start.hpp"
+#include "app/batch_fit_run.hpp"
+#include "app/batch_journal.hpp"
+#include "app/batch_runs.hpp"
+#include "app/batch_shared_fit.hpp"
+#include "app/batch_warm_start.hpp"
+#include "app/fit_request.hpp"
+#include "app/requests.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
-#include "cli/fit_options.hpp"
-#include "cli/option_parsers.hpp"
+#include "cli/signals.hpp"
 #include "cli/terminal_observer.hpp"
 #include "io/atomic_file.hpp"
 #include "io/report_directory_lock.hpp"
@@ -36,10 +37,11 @@ namespace frictionid::cli {
 namespace {
 
 namespace fs = std::filesystem;
+using namespace app;
 using seconds = std::chrono::duration<double>;
 
 struct BatchContext {
-  const BatchOptions& options;
+  const BatchRequest& options;
   fs::path dir;
   int fit_threads = 1;
   const std::atomic<bool>* interrupted = nullptr;
@@ -102,7 +104,7 @@ std::string duration_text(double s) {
   return buf;
 }
 
-SummaryHtmlOptions summary_page_options(const BatchOptions& o, const std::vector<BatchRun>& runs) {
+SummaryHtmlOptions summary_page_options(const BatchRequest& o, const std::vector<BatchRun>& runs) {
   SummaryHtmlOptions h;
   h.trend_x = o.trend_x;
   h.run_reports = o.per_run_reports == "full"   ? RunReports::Full
@@ -114,13 +116,14 @@ SummaryHtmlOptions summary_page_options(const BatchOptions& o, const std::vector
 
 }  // namespace
 
-int run_batch(const BatchOptions& o) {
+int run_batch(const BatchRequest& o) {
   const auto t_start = std::chrono::steady_clock::now();
   if (o.jobs < 0) throw InputError("--jobs must be 0 (every hardware thread) or more");
   // Bad options fail before any work.
-  const FitSettings command_line = fit_settings_from_options(o.fit, o.fit.model);
-  const std::vector<std::string> shared =
-      o.shared.empty() ? std::vector<std::string>{} : parse_shared_option(o.shared, command_line);
+  const FitSettings command_line = fit_settings(o.fit, o.fit.model);
+  const std::vector<std::string>& shared = o.shared;
+  check_shared_option(shared, command_line);
+  if (o.fit.report.empty()) throw InputError("batch needs --report DIR");
   const std::atomic<bool>* interrupted = install_interrupt_handler();
   const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait);
   std::error_code ec;
@@ -153,7 +156,7 @@ int run_batch(const BatchOptions& o) {
   // Several fits at once each take one thread; alone, a fit may use --threads. The results do
   // not depend on either.
   const BatchContext context{o, fs::path(o.fit.report), jobs == 1 ? o.fit.threads : 1, interrupted};
-  const bool progress = show_progress(o.fit);
+  const bool progress = show_progress(o.fit.progress);
 
   std::atomic<std::size_t> next{0};
   std::mutex mutex;  // guards the counters below, the progress line and first_error
@@ -260,16 +263,19 @@ int run_batch(const BatchOptions& o) {
   std::printf("summary: %s/summary.csv, %s/summary.html\n", o.fit.report.c_str(),
               o.fit.report.c_str());
   if (!shared.empty()) {
+    std::string shared_text;
+    for (const auto& name : shared) shared_text += (shared_text.empty() ? "" : ",") + name;
     // The joint fit refits every run alone first: on a terminal, say so before the wait.
     if (progress)
       std::fprintf(stderr, "frictionid batch: joint fit (--shared %s) of the %zu fitted runs...\n",
-                   o.shared.c_str(), runs.size() - failed_total);
+                   shared_text.c_str(), runs.size() - failed_total);
     try {
-      write_shared_fit(runs, table, shared, o.fit.threads, interrupted, o.fit.report, page_options);
+      TerminalObserver observer(interrupted, /*progress=*/false);
+      write_shared_fit(runs, table, shared, o.fit.threads, &observer, o.fit.report, page_options);
     } catch (const FitError& e) {
       if (interrupted->load()) return kExitInterrupted;
-      std::fprintf(stderr, "frictionid: the joint fit (--shared %s) failed: %s\n", o.shared.c_str(),
-                   e.what());
+      std::fprintf(stderr, "frictionid: the joint fit (--shared %s) failed: %s\n",
+                   shared_text.c_str(), e.what());
       return kExitFitFailed;
     }
   }

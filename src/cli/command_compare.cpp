@@ -6,31 +6,32 @@
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/model_comparison.hpp>
+#include "app/fit_request.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
-#include "cli/fit_options.hpp"
-#include "cli/option_parsers.hpp"
+#include "cli/signals.hpp"
 #include "cli/terminal_observer.hpp"
 #include "io/report_directory_lock.hpp"
 #include "io/report_transaction.hpp"
 
 namespace frictionid::cli {
 
-int run_compare(const CompareOptions& o) {
+int run_compare(const app::CompareRequest& o) {
   std::vector<FitSettings> settings;
-  for (const auto& name : parse_name_list("--models", o.models)) {
+  for (const auto& name : o.models) {
     if (!parse_model_kind(name))
       throw InputError("--models: unknown model '" + name + "' (expected seed, corrected, exact)");
-    settings.push_back(fit_settings_from_options(o.fit, name, /*lenient=*/true));
+    settings.push_back(app::fit_settings(o.fit, name, /*lenient=*/true));
   }
+  if (o.fit.report.empty()) throw InputError("compare needs --report DIR");
   const std::atomic<bool>* interrupted = install_interrupt_handler();
   // Held for the whole run, so that two runs into one directory cannot interleave.
   const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait);
   check_report_directory_replaceable(o.fit.report);
-  const Dataset data = load_dataset_csv(o.fit.data, parse_column_map(o.fit.columns));
+  const Dataset data = load_dataset_csv(o.fit.data, o.fit.columns);
   ModelComparison c;
   try {
-    TerminalObserver observer(interrupted, show_progress(o.fit));
+    TerminalObserver observer(interrupted, show_progress(o.fit.progress));
     c = compare_models(data, settings, &observer);
   } catch (const FitError& e) {
     std::fprintf(stderr, "frictionid: compare failed: %s; no report written\n", e.what());

@@ -3,30 +3,32 @@
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
+#include <system_error>
 
 #include <frictionid/fitter.hpp>
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/report_writer.hpp>
+#include "app/fit_request.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
-#include "cli/fit_options.hpp"
-#include "cli/option_parsers.hpp"
+#include "cli/signals.hpp"
 #include "cli/terminal_observer.hpp"
 #include "io/report_directory_lock.hpp"
 #include "io/report_transaction.hpp"
 
 namespace frictionid::cli {
 
-int run_fit(const FitOptions& o) {
+int run_fit(const app::FitRequest& o) {
   using seconds = std::chrono::duration<double>;
-  const FitSettings s = fit_settings_from_options(o, o.model);
+  const FitSettings s = app::fit_settings(o, o.model);
+  if (o.report.empty()) throw InputError("fit needs --report DIR");
   const std::atomic<bool>* interrupted = install_interrupt_handler();
   // Held for the whole run, so that two fits into one directory cannot interleave.
   const ReportDirectoryLock lock(o.report, /*wait=*/!o.no_wait);
   check_report_directory_replaceable(o.report);
   const auto t_read = std::chrono::steady_clock::now();
-  const Dataset data = load_dataset_csv(o.data, parse_column_map(o.columns));
+  const Dataset data = load_dataset_csv(o.data, o.columns);
   const double read_s = seconds(std::chrono::steady_clock::now() - t_read).count();
   ReportOptions report_options;
   report_options.plot_x = o.plot_x;
@@ -40,16 +42,14 @@ int run_fit(const FitOptions& o) {
 
   FitResult r;
   try {
-    TerminalObserver observer(interrupted, show_progress(o));
-    r = Fitter(s).fit(data, &observer);
+    TerminalObserver observer(interrupted, show_progress(o.progress));
+    r = app::fit_dataset(s, data, &observer);
   } catch (const FitError& e) {
     std::error_code ec;
     const bool stale = std::filesystem::exists(std::filesystem::path(o.report) / "report.json", ec);
     std::fprintf(stderr, "frictionid: fit failed: %s; no report written%s\n", e.what(),
                  stale ? (" (" + o.report + "/report.json is from an earlier run)").c_str() : "");
     return interrupted->load() ? kExitInterrupted : kExitFitFailed;
-  } catch (const std::invalid_argument& e) {
-    throw InputError(o.data, 0, 0, e.what());
   }
   if (interrupted->load()) {
     std::fprintf(stderr, "frictionid: interrupted; no report written\n");

@@ -11,15 +11,22 @@
 #endif
 
 #include <frictionid/io/input_error.hpp>
+#include "app/fit_request.hpp"
+#include "app/generation.hpp"
+#include "app/option_parsers.hpp"
+#include "app/request_text.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
-#include "cli/option_parsers.hpp"
 #include "io/huge_pages.hpp"
 #include "io/interruption.hpp"
 
 namespace {
 
 using namespace frictionid::cli;
+using namespace frictionid::app;
+using frictionid::parse_column_map;
+using frictionid::parse_name_list;
+using frictionid::parse_number_list;
 
 // Said wherever an option names a file to write (src/io/atomic_file.hpp).
 const char* const kOutputNote =
@@ -50,28 +57,34 @@ CLI::Option* add_whole_number(CLI::App* c, const std::string& name, T& target, s
       ->default_str(std::to_string(target));
 }
 
-// Largest --rows of generate: 10^7 rows are about 1 GB of CSV.
-constexpr std::uint64_t kMaxRows = 10'000'000;
-// The global stage seeds NLopt, which keeps only 32 bits of a seed: larger ones are rejected
-// instead of aliasing another seed.
-constexpr std::uint64_t kMaxFitSeed = 4'294'967'295ULL;
+// What the command line reads as text before it becomes a request's typed values
+// (app/request_text.hpp): the values of --param, --loads, --models and the like.
+struct Texts {
+  std::string coefficients_format = "json";
+  std::string eval_params, eval_columns;
+  std::string generate_params, loads = "2000,4000,6000", slip_angles = "0";
+  FitText fit, compare, batch;
+  std::string models = "seed,corrected,exact";
+  std::string group_by, shared;
+  std::string simulate_params;
+};
 
-void add_coefficients(CLI::App& app, CoefficientsOptions& o) {
+void add_coefficients(CLI::App& app, CoefficientsRequest& o, std::string& format) {
   auto* c = app.add_subcommand("coefficients",
                                "Moments of a pressure law and the coefficients a, b, m it implies");
   c->add_option("--pressure", o.pressure, kLawHelp)->capture_default_str();
   c->add_option("--kappa", o.kappa, "friction anisotropy kappa > 0")->capture_default_str();
   c->add_option("--alpha", o.alpha, "slip direction [rad], for m(alpha)")->capture_default_str();
-  c->add_option("--format", o.format, "json or table")
+  c->add_option("--format", format, "json or table")
       ->check(CLI::IsMember({"json", "table"}))
       ->capture_default_str();
 }
 
-void add_eval(CLI::App& app, EvalOptions& o) {
+void add_eval(CLI::App& app, EvalRequest& o, Texts& t) {
   auto* c = app.add_subcommand("eval", "Evaluate a model at one point or for every row of a CSV");
-  c->add_option("--model", o.model, "seed, corrected or exact")->capture_default_str();
-  c->add_option("--pressure", o.pressure, kLawHelp)->capture_default_str();
-  c->add_option("--param", o.params,
+  c->add_option("--model", o.model.model, "seed, corrected or exact")->capture_default_str();
+  c->add_option("--pressure", o.model.pressure, kLawHelp)->capture_default_str();
+  c->add_option("--param", t.eval_params,
                 "parameters f=..,kappa=..,h=..[,a=..,b=..,m=..,n=..,p0=..,b_tilde=..]; "
                 "omitted coefficients follow the pressure law");
   c->add_option("--vx", o.vx, "slip velocity along x [m/s]");
@@ -82,15 +95,15 @@ void add_eval(CLI::App& app, EvalOptions& o) {
   c->add_option("--input", o.input, "CSV of kinematics (dataset columns)");
   c->add_option("--output", o.output,
                 std::string("CSV to write: the input columns plus the predictions") + kOutputNote);
-  c->add_option("--columns", o.columns, "rename columns: canonical=header,...");
+  c->add_option("--columns", t.eval_columns, "rename columns: canonical=header,...");
 }
 
-void add_generate(CLI::App& app, GenerateOptions& o) {
+void add_generate(CLI::App& app, GenerateRequest& o, Texts& t) {
   auto* c = app.add_subcommand("generate", "Make a synthetic dataset from a model, with its truth");
-  c->add_option("--model", o.model, "seed, corrected or exact")->capture_default_str();
-  c->add_option("--pressure", o.pressure, kLawHelp)->capture_default_str();
-  c->add_option("--param", o.params, "true parameters f=..,kappa=..,h=..[,a=..,...]");
-  add_whole_number(c, "--rows", o.rows, 1, kMaxRows, "number of rows");
+  c->add_option("--model", o.model.model, "seed, corrected or exact")->capture_default_str();
+  c->add_option("--pressure", o.model.pressure, kLawHelp)->capture_default_str();
+  c->add_option("--param", t.generate_params, "true parameters f=..,kappa=..,h=..[,a=..,...]");
+  add_whole_number(c, "--rows", o.rows, 1, kMaxGeneratedRows, "number of rows");
   c->add_option("--noise", o.noise, "relative Gaussian noise (fraction of each value)")
       ->capture_default_str();
   c->add_option("--noise-abs", o.noise_abs, "absolute Gaussian noise [channel units]")
@@ -102,21 +115,21 @@ void add_generate(CLI::App& app, GenerateOptions& o) {
                 std::string("JSON file for the true parameters and design") + kOutputNote);
   c->add_option("--eps-min", o.eps_min, "smallest eps = v/(|omega| R)")->capture_default_str();
   c->add_option("--eps-max", o.eps_max, "largest eps")->capture_default_str();
-  c->add_option("--loads", o.loads, "normal loads N [N], comma separated")->capture_default_str();
+  c->add_option("--loads", t.loads, "normal loads N [N], comma separated")->capture_default_str();
   c->add_option("--R", o.R, "contact radius [m]")->capture_default_str();
   c->add_option("--spin", o.spin, "|omega| [rad/s]; signs alternate")->capture_default_str();
-  c->add_option("--slip-angles", o.slip_angles_deg, "slip directions [deg], comma separated")
+  c->add_option("--slip-angles", t.slip_angles, "slip directions [deg], comma separated")
       ->capture_default_str();
   c->add_flag("--forward-only", o.forward_only, "no rows with backward slip (v_x < 0)");
 }
 
 // The options fit, compare and batch share (batch takes its own inputs instead of `data`).
-void add_fit_options(CLI::App* c, FitOptions& o, bool with_data = true) {
+void add_fit_options(CLI::App* c, FitRequest& o, FitText& t, bool with_data = true) {
   if (with_data) c->add_option("data", o.data, "dataset CSV")->required();
   c->add_option("--pressure", o.pressure, kLawHelp)->capture_default_str();
-  c->add_option("--fix", o.fix, "hold parameters fixed: name=value,...");
-  c->add_option("--bounds", o.bounds, "parameter bounds: name=lo:hi,...");
-  c->add_option("--param", o.initial, "initial values (used with --no-global): name=value,...");
+  c->add_option("--fix", t.fix, "hold parameters fixed: name=value,...");
+  c->add_option("--bounds", t.bounds, "parameter bounds: name=lo:hi,...");
+  c->add_option("--param", t.start, "initial values (used with --no-global): name=value,...");
   c->add_option("--loss", o.loss, "none, huber:S, cauchy:S or soft_l1:S (per row, S in sigmas)")
       ->capture_default_str();
   c->add_option("--noise-model", o.noise_model,
@@ -146,8 +159,8 @@ void add_fit_options(CLI::App* c, FitOptions& o, bool with_data = true) {
       ->check(CLI::IsMember({"crs2", "isres", "direct", "esch", "random"}))
       ->capture_default_str();
   c->add_flag("--no-global", o.no_global, "skip the global stage; start from --param values");
-  c->add_option("--channels", o.channels, "channels to fit, e.g. T_x,M_z (default: all measured)");
-  c->add_option("--columns", o.columns, "rename columns: canonical=header,...");
+  c->add_option("--channels", t.channels, "channels to fit, e.g. T_x,M_z (default: all measured)");
+  c->add_option("--columns", t.columns, "rename columns: canonical=header,...");
   c->add_option("--threads", o.threads,
                 "threads for the passes over the rows (0: every hardware thread); the results "
                 "do not depend on it")
@@ -164,11 +177,11 @@ void add_fit_options(CLI::App* c, FitOptions& o, bool with_data = true) {
   c->add_flag("--progress", o.progress, "progress line on stderr (default: when it is a terminal)");
 }
 
-void add_fit(CLI::App& app, FitOptions& o) {
+void add_fit(CLI::App& app, FitRequest& o, FitText& t) {
   auto* c =
       app.add_subcommand("fit", "Identify a model's parameters from a CSV and write a report");
   c->add_option("--model", o.model, "seed, corrected or exact")->capture_default_str();
-  add_fit_options(c, o);
+  add_fit_options(c, o, t);
   c->add_option("--plot-x", o.plot_x,
                 "report: also plot every channel against these CSV columns (e.g. slip_angle)")
       ->delimiter(',');
@@ -177,14 +190,14 @@ void add_fit(CLI::App& app, FitOptions& o) {
                 "most 8 levels)");
 }
 
-void add_compare(CLI::App& app, CompareOptions& o) {
+void add_compare(CLI::App& app, CompareRequest& o, Texts& t) {
   auto* c = app.add_subcommand(
       "compare", "Fit seed, corrected and exact to the same rows and report them side by side");
-  c->add_option("--models", o.models, "models to compare, comma separated")->capture_default_str();
-  add_fit_options(c, o.fit);
+  c->add_option("--models", t.models, "models to compare, comma separated")->capture_default_str();
+  add_fit_options(c, o.fit, t.compare);
 }
 
-void add_batch(CLI::App& app, BatchOptions& o) {
+void add_batch(CLI::App& app, BatchRequest& o, Texts& t) {
   auto* c = app.add_subcommand(
       "batch",
       "Fit many runs (files, a directory, a manifest or groups of one CSV) into one "
@@ -193,8 +206,8 @@ void add_batch(CLI::App& app, BatchOptions& o) {
                 "CSV files, globs, directories (their *.csv) or manifest CSVs (a `path` column)")
       ->required();
   c->add_option("--model", o.fit.model, "seed, corrected or exact")->capture_default_str();
-  add_fit_options(c, o.fit, /*with_data=*/false);
-  c->add_option("--group-by", o.group_by, "split each CSV into one run per value of COL[,COL]");
+  add_fit_options(c, o.fit, t.batch, /*with_data=*/false);
+  c->add_option("--group-by", t.group_by, "split each CSV into one run per value of COL[,COL]");
   c->add_option("--per-run-reports", o.per_run_reports,
                 "none, json (runs/<label>/report.json) or full (the whole report in "
                 "runs/<label>/)")
@@ -207,7 +220,7 @@ void add_batch(CLI::App& app, BatchOptions& o) {
               "fit the first run in full, then start every other run's local fit from its "
               "parameters without the global stage; a run whose warm fit does not converge or "
               "fits a channel over twice as loosely (sqrt(1 - R^2)) gets the full search");
-  c->add_option("--shared", o.shared,
+  c->add_option("--shared", t.shared,
                 "P[,P]: after the runs' own fits, one joint fit in which these parameters are "
                 "common to every run (DIR/shared.csv, DIR/shared.json), e.g. kappa,h");
   c->add_option("--trend-x", o.trend_x,
@@ -216,12 +229,13 @@ void add_batch(CLI::App& app, BatchOptions& o) {
       ->capture_default_str();
 }
 
-void add_simulate(CLI::App& app, SimulateOptions& o) {
+void add_simulate(CLI::App& app, SimulateRequest& o, Texts& t) {
   auto* c = app.add_subcommand(
       "simulate", "Slide and spin a flat body to rest under a model's friction (physics §4)");
-  c->add_option("--model", o.model, "seed, corrected or exact")->capture_default_str();
-  c->add_option("--pressure", o.pressure, kLawHelp)->capture_default_str();
-  c->add_option("--param", o.params, "friction parameters f=..,kappa=..,h=..[,a=..,...] as eval");
+  c->add_option("--model", o.model.model, "seed, corrected or exact")->capture_default_str();
+  c->add_option("--pressure", o.model.pressure, kLawHelp)->capture_default_str();
+  c->add_option("--param", t.simulate_params,
+                "friction parameters f=..,kappa=..,h=..[,a=..,...] as eval");
   c->add_option("--inertia-ratio", o.inertia_ratio,
                 "I/(M_b R^2): 0.5 uniform disk, 1 thin ring (required)");
   c->add_option("--v0", o.v0, "initial slip speed [m/s]")->capture_default_str();
@@ -270,20 +284,21 @@ int main(int argc, char** argv) {
       "from force and torque data"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "frictionid 0.1.0");
-  CoefficientsOptions coefficients;
-  EvalOptions eval;
-  add_coefficients(app, coefficients);
-  add_eval(app, eval);
-  GenerateOptions generate;
-  FitOptions fit;
-  add_generate(app, generate);
-  add_fit(app, fit);
-  CompareOptions compare;
-  add_compare(app, compare);
-  SimulateOptions simulate;
-  add_simulate(app, simulate);
-  BatchOptions batch;
-  add_batch(app, batch);
+  Texts texts;
+  CoefficientsRequest coefficients;
+  EvalRequest eval;
+  add_coefficients(app, coefficients, texts.coefficients_format);
+  add_eval(app, eval, texts);
+  GenerateRequest generate;
+  FitRequest fit;
+  add_generate(app, generate, texts);
+  add_fit(app, fit, texts.fit);
+  CompareRequest compare;
+  add_compare(app, compare, texts);
+  SimulateRequest simulate;
+  add_simulate(app, simulate, texts);
+  BatchRequest batch;
+  add_batch(app, batch, texts);
 
   // An empty value ("--param ''", "--fix=") would otherwise read as "option not given".
   for (int i = 1; i < argc; ++i) {
@@ -312,13 +327,38 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (app.got_subcommand("coefficients")) return run_coefficients(coefficients);
-    if (app.got_subcommand("eval")) return run_eval(eval);
-    if (app.got_subcommand("generate")) return run_generate(generate);
-    if (app.got_subcommand("fit")) return run_fit(fit);
-    if (app.got_subcommand("compare")) return run_compare(compare);
-    if (app.got_subcommand("simulate")) return run_simulate(simulate);
-    if (app.got_subcommand("batch")) return run_batch(batch);
+    if (app.got_subcommand("coefficients"))
+      return run_coefficients(coefficients, texts.coefficients_format);
+    if (app.got_subcommand("eval")) {
+      eval.model.params = parameter_values(texts.eval_params);
+      eval.columns = parse_column_map(texts.eval_columns);
+      return run_eval(eval);
+    }
+    if (app.got_subcommand("generate")) {
+      generate.model.params = parameter_values(texts.generate_params);
+      generate.loads = parse_number_list("--loads", texts.loads);
+      generate.slip_angles_deg = parse_number_list("--slip-angles", texts.slip_angles);
+      return run_generate(generate);
+    }
+    if (app.got_subcommand("fit")) {
+      apply(texts.fit, fit);
+      return run_fit(fit);
+    }
+    if (app.got_subcommand("compare")) {
+      compare.models = parse_name_list("--models", texts.models);
+      apply(texts.compare, compare.fit);
+      return run_compare(compare);
+    }
+    if (app.got_subcommand("simulate")) {
+      simulate.model.params = parameter_values(texts.simulate_params);
+      return run_simulate(simulate);
+    }
+    if (app.got_subcommand("batch")) {
+      batch.group_by = name_list("--group-by", texts.group_by);
+      batch.shared = shared_names(texts.shared);
+      apply(texts.batch, batch.fit);
+      return run_batch(batch);
+    }
   } catch (const frictionid::Interrupted& e) {
     std::fprintf(stderr, "frictionid: %s; the earlier report (if any) is unchanged\n", e.what());
     return kExitInterrupted;

@@ -10,6 +10,7 @@
 #include <map>
 #include <numeric>
 #include <tuple>
+#include <vector>
 
 #include <pybind11/stl.h>
 #include <nlohmann/json.hpp>
@@ -18,10 +19,11 @@
 #include <frictionid/io/report_writer.hpp>
 #include <frictionid/io/summary_html.hpp>
 #include <frictionid/io/summary_table.hpp>
-#include "cli/batch_fit_run.hpp"
-#include "cli/batch_runs.hpp"
-#include "cli/commands.hpp"
-#include "cli/fit_options.hpp"
+#include "app/batch_fit_run.hpp"
+#include "app/batch_runs.hpp"
+#include "app/fit_request.hpp"
+#include "app/request_json.hpp"
+#include "app/requests.hpp"
 #include "io/atomic_file.hpp"
 #include "python/bindings.hpp"
 
@@ -36,50 +38,6 @@ std::string dump(const ojson& j, int indent = -1) {
   return j.dump(indent, ' ', false, ojson::error_handler_t::replace);
 }
 
-// Every FitOptions field that fit_settings_from_options reads, except threads (set per worker).
-ojson options_json(const cli::FitOptions& o) {
-  return {{"model", o.model},
-          {"pressure", o.pressure},
-          {"fix", o.fix},
-          {"bounds", o.bounds},
-          {"initial", o.initial},
-          {"loss", o.loss},
-          {"channels", o.channels},
-          {"columns", o.columns},
-          {"noise_model", o.noise_model},
-          {"intervals", o.intervals},
-          {"bootstrap", o.bootstrap},
-          {"starts", o.starts},
-          {"seed", o.seed},
-          {"global_evaluations", o.global_evaluations},
-          {"global_subsample", o.global_subsample},
-          {"no_global", o.no_global},
-          {"global_algorithm", o.global_algorithm}};
-}
-
-cli::FitOptions options_from_json(const ojson& j) {
-  cli::FitOptions o;
-  o.model = j.at("model").get<std::string>();
-  o.pressure = j.at("pressure").get<std::string>();
-  o.fix = j.at("fix").get<std::string>();
-  o.bounds = j.at("bounds").get<std::string>();
-  o.initial = j.at("initial").get<std::string>();
-  o.loss = j.at("loss").get<std::string>();
-  o.channels = j.at("channels").get<std::string>();
-  o.columns = j.at("columns").get<std::string>();
-  o.noise_model = j.at("noise_model").get<std::string>();
-  o.intervals = j.at("intervals").get<std::string>();
-  o.bootstrap = j.at("bootstrap").get<int>();
-  o.starts = j.at("starts").get<int>();
-  o.seed = j.at("seed").get<unsigned long long>();
-  o.global_evaluations = j.at("global_evaluations").get<long>();
-  o.global_subsample = j.at("global_subsample").get<std::size_t>();
-  o.no_global = j.at("no_global").get<bool>();
-  o.global_algorithm = j.at("global_algorithm").get<std::string>();
-  o.report = ".";  // required by the settings code; the worker writes no report directory
-  return o;
-}
-
 ojson covariates_json(const std::vector<Covariate>& covariates) {
   ojson out = ojson::array();
   for (const auto& c : covariates)
@@ -89,23 +47,23 @@ ojson covariates_json(const std::vector<Covariate>& covariates) {
   return out;
 }
 
-std::string run_json(const cli::BatchRun& run) {
+std::string run_json(const app::BatchRun& run) {
   ojson j = {{"label", run.label},
              {"directory", run.directory},
              {"path", run.path},
-             {"options", options_json(run.options)},
+             {"options", app::fit_request_json(run.options)},
              {"covariates", covariates_json(run.covariates)}};
   j["group_rows"] = run.file_data ? ojson(run.group_rows) : ojson(nullptr);
   return dump(j);
 }
 
-cli::BatchRun run_from_json(const std::string& text) {
+app::BatchRun run_from_json(const std::string& text) {
   const ojson j = ojson::parse(text);
-  cli::BatchRun run;
+  app::BatchRun run;
   run.label = j.at("label").get<std::string>();
   run.directory = j.at("directory").get<std::string>();
   run.path = j.at("path").get<std::string>();
-  run.options = options_from_json(j.at("options"));
+  run.options = app::fit_request_from_json(j.at("options"));
   for (const auto& c : j.at("covariates")) {
     if (c.at(1).is_string())
       run.covariates.push_back({c.at(0).get<std::string>(), c.at(1).get<std::string>()});
@@ -118,14 +76,13 @@ cli::BatchRun run_from_json(const std::string& text) {
 }
 
 // The checks `frictionid batch` makes before any work, then its plan, one JSON text per run.
-std::vector<std::string> plan(const std::vector<std::string>& inputs, cli::FitOptions o,
-                              const std::string& group_by) {
-  if (o.report.empty()) o.report = ".";
-  std::vector<cli::BatchRun> runs;
+std::vector<std::string> plan(const std::vector<std::string>& inputs, const app::FitRequest& o,
+                              const std::vector<std::string>& group_by) {
+  std::vector<app::BatchRun> runs;
   {
     py::gil_scoped_release release;
-    (void)cli::fit_settings_from_options(o, o.model);
-    runs = cli::plan_batch_runs(inputs, o, group_by, "");
+    (void)app::fit_settings(o, o.model);
+    runs = app::plan_batch_runs(inputs, o, group_by, "");
   }
   std::vector<std::string> out;
   for (const auto& run : runs) out.push_back(run_json(run));
@@ -133,15 +90,14 @@ std::vector<std::string> plan(const std::vector<std::string>& inputs, cli::FitOp
 }
 
 // A run over rows held in memory (a DataFrame's group): the same JSON, without a file.
-std::string table_run(const std::string& label, cli::FitOptions o,
+std::string table_run(const std::string& label, const app::FitRequest& o,
                       const std::vector<std::pair<std::string, std::string>>& covariates) {
-  if (o.report.empty()) o.report = ".";
-  (void)cli::fit_settings_from_options(o, o.model);
-  cli::BatchRun run;
+  (void)app::fit_settings(o, o.model);
+  app::BatchRun run;
   run.label = label;
   run.options = o;
   for (const auto& [name, value] : covariates) {
-    cli::check_covariate_name(name, "group_by");
+    app::check_covariate_name(name, "group_by");
     run.covariates.push_back({name, value});
   }
   return run_json(run);
@@ -152,7 +108,7 @@ std::string table_run(const std::string& label, cli::FitOptions o,
 std::pair<std::string, std::optional<std::string>> fit_run(
     const std::string& run_text, int threads, bool report,
     const std::optional<std::shared_ptr<Dataset>>& data) {
-  cli::BatchRun run = run_from_json(run_text);
+  app::BatchRun run = run_from_json(run_text);
   if (data) {
     run.file_data = *data;
     run.group_rows.resize((*data)->rows());
@@ -162,7 +118,7 @@ std::pair<std::string, std::optional<std::string>> fit_run(
   SummaryRow row;
   {
     py::gil_scoped_release release;
-    row = cli::fit_batch_run(run, threads, nullptr, [&](const FitResult& r, const Dataset&) {
+    row = app::fit_batch_run(run, threads, nullptr, [&](const FitResult& r, const Dataset&) {
       if (report) report_text = dump(report_json(r), 2) + "\n";
     });
   }
@@ -171,7 +127,7 @@ std::pair<std::string, std::optional<std::string>> fit_run(
 
 // The failed row of a run whose rows could not be made (a DataFrame group the reader rejects).
 std::string failed_run(const std::string& run_text, const std::string& error) {
-  const cli::BatchRun run = run_from_json(run_text);
+  const app::BatchRun run = run_from_json(run_text);
   return dump(summary_row_json(failed_summary_row(run.label, 0, error, run.covariates)));
 }
 
@@ -195,9 +151,9 @@ std::tuple<std::string, std::string, std::string> summary_files(
 
 // `frictionid batch --trend-x`'s check, on planned runs: InputError for an unknown covariate.
 void check_trend_x(const std::vector<std::string>& run_texts, const std::string& trend_x) {
-  std::vector<cli::BatchRun> runs;
+  std::vector<app::BatchRun> runs;
   for (const auto& text : run_texts) runs.push_back(run_from_json(text));
-  cli::check_trend_x(trend_x, runs);
+  app::check_trend_x(trend_x, runs);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
-// Datasets (from a CSV file or from columns in memory), the fit options of the command line,
-// and fit itself: the same settings code as `frictionid fit` (cli::fit_settings_from_options),
-// run with the GIL released and cancellable by Ctrl-C.
+// Datasets (from a CSV file or from columns in memory), the fit request, and fit itself: the
+// same app code as `frictionid fit` (app::fit_settings, app::fit_dataset), run with the GIL
+// released and cancellable by Ctrl-C.
 #include <memory>
 
 #include <pybind11/stl.h>
@@ -9,11 +9,13 @@
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/report_writer.hpp>
-#include "cli/commands.hpp"
-#include "cli/fit_options.hpp"
-#include "cli/option_parsers.hpp"
+#include "app/fit_request.hpp"
+#include "app/option_parsers.hpp"
+#include "app/request_text.hpp"
+#include "app/requests.hpp"
 #include "python/bindings.hpp"
 #include "python/dataset_from_columns.hpp"
+#include "python/json_values.hpp"
 #include "python/numpy_columns.hpp"
 #include "python/python_observer.hpp"
 
@@ -36,21 +38,18 @@ std::shared_ptr<Dataset> from_columns(const py::dict& columns, const std::string
   return std::make_shared<Dataset>(dataset_from_columns(std::move(values), source));
 }
 
-std::shared_ptr<FitOutput> run_fit(const std::shared_ptr<Dataset>& data, cli::FitOptions o) {
-  // The command line requires a report directory; the Python API writes reports on request.
-  if (o.report.empty()) o.report = ".";
-  const FitSettings s = cli::fit_settings_from_options(o, o.model);
+std::shared_ptr<FitOutput> run_fit(const std::shared_ptr<Dataset>& data,
+                                   const app::FitRequest& request) {
+  const FitSettings s = app::fit_settings(request, request.model);
   auto out = std::make_shared<FitOutput>();
   out->data = data;
   PythonObserver observer;
   try {
     py::gil_scoped_release release;
-    out->result = Fitter(s).fit(*data, &observer);
+    out->result = app::fit_dataset(s, *data, &observer);
   } catch (const FitError&) {
     observer.rethrow_pending();  // Ctrl-C: KeyboardInterrupt rather than FitError("interrupted")
     throw;
-  } catch (const std::invalid_argument& e) {
-    throw InputError(data->source, 0, 0, e.what());  // as `frictionid fit` reports it
   }
   observer.rethrow_pending();
   return out;
@@ -67,41 +66,64 @@ void register_fit(py::module_& m) {
 
   m.def(
       "load_dataset_csv",
-      [](const std::string& path, const std::string& columns) {
-        const ColumnMap map = parse_column_map(columns);
+      [](const std::string& path, const std::map<std::string, std::string>& columns) {
+        const ColumnMap map = column_map(columns);
         py::gil_scoped_release release;
         return std::make_shared<Dataset>(load_dataset_csv(path, map));
       },
-      py::arg("path"), py::arg("columns") = "");
+      py::arg("path"), py::arg("columns") = std::map<std::string, std::string>{});
   m.def("dataset_from_columns", &from_columns, py::arg("columns"), py::arg("source"));
   m.def(
-      "parse_column_map",
-      [](const std::string& spec) { return parse_column_map(spec).canonical_to_header; },
-      py::arg("spec"));
+      "column_map",
+      [](const std::map<std::string, std::string>& columns) {
+        return column_map(columns).canonical_to_header;
+      },
+      py::arg("columns"), "The checked canonical -> header map (as --columns checks it).");
 
-  py::class_<cli::FitOptions>(m, "FitOptions")
+  using app::FitRequest;
+  py::class_<FitRequest>(m, "FitRequest")
       .def(py::init<>())
-      .def_readwrite("model", &cli::FitOptions::model)
-      .def_readwrite("pressure", &cli::FitOptions::pressure)
-      .def_readwrite("fix", &cli::FitOptions::fix)
-      .def_readwrite("bounds", &cli::FitOptions::bounds)
-      .def_readwrite("initial", &cli::FitOptions::initial)
-      .def_readwrite("loss", &cli::FitOptions::loss)
-      .def_readwrite("channels", &cli::FitOptions::channels)
-      .def_readwrite("columns", &cli::FitOptions::columns)
-      .def_readwrite("intervals", &cli::FitOptions::intervals)
-      .def_readwrite("bootstrap", &cli::FitOptions::bootstrap)
-      .def_readwrite("noise_model", &cli::FitOptions::noise_model)
-      .def_readwrite("starts", &cli::FitOptions::starts)
-      .def_readwrite("seed", &cli::FitOptions::seed)
-      .def_readwrite("global_evaluations", &cli::FitOptions::global_evaluations)
-      .def_readwrite("global_subsample", &cli::FitOptions::global_subsample)
-      .def_readwrite("no_global", &cli::FitOptions::no_global)
-      .def_readwrite("global_algorithm", &cli::FitOptions::global_algorithm)
-      .def_readwrite("threads", &cli::FitOptions::threads);
+      .def_readwrite("model", &FitRequest::model)
+      .def_readwrite("pressure", &FitRequest::pressure)
+      .def_readwrite("fix", &FitRequest::fix)
+      .def_readwrite("bounds", &FitRequest::bounds)
+      .def_readwrite("start", &FitRequest::start)
+      .def_readwrite("loss", &FitRequest::loss)
+      .def_readwrite("channels", &FitRequest::channels)
+      .def_property(
+          "columns", [](const FitRequest& r) { return r.columns.canonical_to_header; },
+          [](FitRequest& r, const std::map<std::string, std::string>& columns) {
+            r.columns = column_map(columns);
+          })
+      .def_readwrite("intervals", &FitRequest::intervals)
+      .def_readwrite("bootstrap", &FitRequest::bootstrap)
+      .def_readwrite("noise_model", &FitRequest::noise_model)
+      .def_readwrite("starts", &FitRequest::starts)
+      .def_readwrite("seed", &FitRequest::seed)
+      .def_readwrite("global_evaluations", &FitRequest::global_evaluations)
+      .def_readwrite("global_subsample", &FitRequest::global_subsample)
+      .def_readwrite("no_global", &FitRequest::no_global)
+      .def_readwrite("global_algorithm", &FitRequest::global_algorithm)
+      .def_readwrite("threads", &FitRequest::threads)
+      .def(
+          "check", [](const FitRequest& r) { (void)app::fit_settings(r, r.model); },
+          "Raises InputError for what the fit would reject, before any data is read.");
+
+  // The text form of python3 -m frictionid batch's options, as `frictionid batch` reads it.
+  m.def(
+      "apply_fit_text",
+      [](FitRequest& r, const std::string& fix, const std::string& bounds, const std::string& start,
+         const std::string& channels, const std::string& columns) {
+        app::apply(app::FitText{fix, bounds, start, channels, columns}, r);
+      },
+      py::arg("request"), py::kw_only(), py::arg("fix") = "", py::arg("bounds") = "",
+      py::arg("start") = "", py::arg("channels") = "", py::arg("columns") = "");
+  m.def("name_list", &app::name_list, py::arg("option"), py::arg("text"));
 
   py::class_<FitOutput, std::shared_ptr<FitOutput>>(m, "FitOutput")
-      .def("report_json", [](const FitOutput& f) { return report_json(f.result).dump(2); })
+      .def(
+          "report", [](const FitOutput& f) { return to_python(report_json(f.result)); },
+          "report.json's content as Python values (no JSON text in between).")
       .def(
           "write_report",
           [](const FitOutput& f, const std::string& dir) {
@@ -121,7 +143,7 @@ void register_fit(py::module_& m) {
                              })
       .def_property_readonly("time_s", [](const FitOutput& f) { return f.result.solver.time_s; });
 
-  m.def("fit", &run_fit, py::arg("data"), py::arg("options"));
+  m.def("fit", &run_fit, py::arg("data"), py::arg("request"));
 }
 
 }  // namespace frictionid::python

@@ -10,7 +10,7 @@
 
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
-#include "cli/option_parsers.hpp"
+#include "app/option_parsers.hpp"
 #include "fuzz_support.hpp"
 
 namespace {

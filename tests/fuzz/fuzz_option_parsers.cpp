@@ -10,7 +10,7 @@
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/pressure_law_reader.hpp>
-#include "cli/option_parsers.hpp"
+#include "app/option_parsers.hpp"
 #include "fuzz_support.hpp"
 #include "io/text.hpp"
 

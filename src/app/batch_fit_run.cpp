@@ -1,14 +1,14 @@
-#include "cli/batch_fit_run.hpp"
+#include "app/batch_fit_run.hpp"
 
 #include <exception>
 #include <optional>
 
 #include <frictionid/fitter.hpp>
 #include <frictionid/io/dataset_csv.hpp>
-#include "cli/fit_options.hpp"
-#include "cli/option_parsers.hpp"
+#include "app/fit_request.hpp"
+#include "app/option_parsers.hpp"
 
-namespace frictionid::cli {
+namespace frictionid::app {
 
 SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer,
                          const RunFitted& on_fitted, const WarmStart* warm) {
@@ -17,7 +17,7 @@ SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer
     if (run.file_data) {
       data = select_rows(*run.file_data, run.group_rows);
     } else {
-      data = load_dataset_csv(run.path, parse_column_map(run.options.columns));
+      data = load_dataset_csv(run.path, run.options.columns);
       if (!run.group_rows.empty()) data = select_rows(data, run.group_rows);
     }
   } catch (const std::exception& e) {
@@ -26,7 +26,7 @@ SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer
   auto covariates = dataset_covariates(data);
   covariates.insert(covariates.end(), run.covariates.begin(), run.covariates.end());
   try {
-    FitSettings s = fit_settings_from_options(run.options, run.options.model);
+    FitSettings s = fit_settings(run.options, run.options.model);
     s.threads = threads;
     std::optional<FitResult> warm_fit;
     if (warm) warm_fit = fit_warm(s, *warm, data, observer);
@@ -38,4 +38,4 @@ SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer
   }
 }
 
-}  // namespace frictionid::cli
+}  // namespace frictionid::app

@@ -1,4 +1,4 @@
-// Turns the --model/--pressure/--param options into a model variant with a full parameter
+// Turns a ModelRequest (--model, --pressure, --param) into a model variant with a full parameter
 // vector: values the user leaves out follow from the pressure law (docs/physics.md §3).
 #pragma once
 
@@ -9,8 +9,9 @@
 
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/model_variant.hpp>
+#include "app/requests.hpp"
 
-namespace frictionid::cli {
+namespace frictionid::app {
 
 struct ModelSetup {
   ModelKind kind;
@@ -20,11 +21,10 @@ struct ModelSetup {
 };
 
 // Throws InputError on an unknown model, law or parameter name, or an out-of-range value.
-ModelSetup make_model_setup(const std::string& model, const std::string& pressure,
-                            const std::string& param_spec);
+ModelSetup make_model_setup(const ModelRequest& r);
 
 // The model, the pressure law's label and the model's parameters by name, as the JSON outputs
 // (simulate, the truth file of generate) start.
 nlohmann::ordered_json model_json(const ModelSetup& s);
 
-}  // namespace frictionid::cli
+}  // namespace frictionid::app

@@ -1,4 +1,4 @@
-#include "cli/batch_shared_fit.hpp"
+#include "app/batch_shared_fit.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -8,13 +8,12 @@
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/joint_fit.hpp>
-#include "cli/fit_options.hpp"
-#include "cli/option_parsers.hpp"
-#include "cli/terminal_observer.hpp"
+#include "app/fit_request.hpp"
+#include "app/option_parsers.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json_number.hpp"
 
-namespace frictionid::cli {
+namespace frictionid::app {
 namespace {
 
 namespace fs = std::filesystem;
@@ -42,25 +41,15 @@ SummaryRow joint_row(const JointRunResult& run, const SummaryRow& own) {
 
 }  // namespace
 
-std::vector<std::string> parse_shared_option(const std::string& text,
-                                             const FitSettings& command_line) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = text.find(',', start);
-    const std::string name = text.substr(start, comma == std::string::npos ? comma : comma - start);
-    if (name.empty())
-      throw InputError("--shared: expected P[,P], e.g. kappa,h; got '" + text + "'");
-    out.push_back(name);
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
+void check_shared_option(const std::vector<std::string>& shared, const FitSettings& command_line) {
+  if (shared.empty()) return;  // no joint fit
+  for (const auto& name : shared)
+    if (name.empty()) throw InputError("--shared: expected P[,P], e.g. kappa,h; got an empty name");
   try {
-    check_shared_parameters(command_line, out);
+    check_shared_parameters(command_line, shared);
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string("--shared: ") + e.what());
   }
-  return out;
 }
 
 void check_shared_parameters(const std::vector<BatchRun>& runs,
@@ -68,8 +57,7 @@ void check_shared_parameters(const std::vector<BatchRun>& runs,
   if (shared.empty()) return;  // no --shared
   for (const BatchRun& run : runs) {
     try {
-      frictionid::check_shared_parameters(fit_settings_from_options(run.options, run.options.model),
-                                          shared);
+      frictionid::check_shared_parameters(fit_settings(run.options, run.options.model), shared);
     } catch (const std::invalid_argument& e) {
       throw InputError("--shared: run " + run.label + ": " + e.what());
     }
@@ -77,9 +65,8 @@ void check_shared_parameters(const std::vector<BatchRun>& runs,
 }
 
 void write_shared_fit(const std::vector<BatchRun>& runs, const std::vector<SummaryRow>& table,
-                      const std::vector<std::string>& shared, int threads,
-                      const std::atomic<bool>* interrupted, const std::string& dir,
-                      SummaryHtmlOptions page) {
+                      const std::vector<std::string>& shared, int threads, FitObserver* observer,
+                      const std::string& dir, SummaryHtmlOptions page) {
   std::vector<std::unique_ptr<Dataset>> data;
   std::vector<JointRunInput> inputs;
   std::vector<std::size_t> index;  // inputs[k] is runs[index[k]]
@@ -90,18 +77,16 @@ void write_shared_fit(const std::vector<BatchRun>& runs, const std::vector<Summa
       continue;
     }
     const BatchRun& run = runs[i];
-    data.push_back(std::make_unique<Dataset>(
-        run.file_data ? select_rows(*run.file_data, run.group_rows)
-                      : load_dataset_csv(run.path, parse_column_map(run.options.columns))));
-    inputs.push_back(
-        {run.label, data.back().get(), fit_settings_from_options(run.options, run.options.model)});
+    data.push_back(
+        std::make_unique<Dataset>(run.file_data ? select_rows(*run.file_data, run.group_rows)
+                                                : load_dataset_csv(run.path, run.options.columns)));
+    inputs.push_back({run.label, data.back().get(), fit_settings(run.options, run.options.model)});
     index.push_back(i);
   }
   if (inputs.empty()) throw FitError("--shared: no run was fitted, so there is no joint fit");
-  TerminalObserver observer(interrupted, /*progress=*/false);
   JointFitResult joint;
   try {
-    joint = fit_joint(inputs, shared, threads, &observer);
+    joint = fit_joint(inputs, shared, threads, observer);
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string("--shared: ") + e.what());
   }
@@ -159,4 +144,4 @@ void write_shared_fit(const std::vector<BatchRun>& runs, const std::vector<Summa
   std::printf("; %s/shared.csv\n", dir.c_str());
 }
 
-}  // namespace frictionid::cli
+}  // namespace frictionid::app

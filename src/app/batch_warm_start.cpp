@@ -1,4 +1,4 @@
-#include "cli/batch_warm_start.hpp"
+#include "app/batch_warm_start.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <frictionid/fitter.hpp>
 #include <frictionid/parameters.hpp>
 
-namespace frictionid::cli {
+namespace frictionid::app {
 
 std::optional<double> channel_misfit(const FitResult& r, Channel c) {
   for (const ChannelSummary& cs : r.channel_summaries)
@@ -54,4 +54,4 @@ std::optional<FitResult> fit_warm(const FitSettings& s, const WarmStart& warm, c
   return r;
 }
 
-}  // namespace frictionid::cli
+}  // namespace frictionid::app

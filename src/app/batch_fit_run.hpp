@@ -9,10 +9,10 @@
 #include <frictionid/fit_observer.hpp>
 #include <frictionid/fit_result.hpp>
 #include <frictionid/io/summary_table.hpp>
-#include "cli/batch_runs.hpp"
-#include "cli/batch_warm_start.hpp"
+#include "app/batch_runs.hpp"
+#include "app/batch_warm_start.hpp"
 
-namespace frictionid::cli {
+namespace frictionid::app {
 
 // Called with a successful fit and its rows, e.g. to write the run's report; what it throws makes
 // the run a failed row.
@@ -26,4 +26,4 @@ using RunFitted = std::function<void(const FitResult&, const Dataset&)>;
 SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer,
                          const RunFitted& on_fitted = {}, const WarmStart* warm = nullptr);
 
-}  // namespace frictionid::cli
+}  // namespace frictionid::app

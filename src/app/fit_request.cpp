@@ -1,25 +1,19 @@
-#include "cli/fit_options.hpp"
-
-#include <unistd.h>
+#include "app/fit_request.hpp"
 
 #include <algorithm>
-#include <csignal>
 #include <cstdio>
+#include <set>
+#include <stdexcept>
 #include <vector>
 
+#include <frictionid/fitter.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/pressure_law_reader.hpp>
-#include "cli/option_parsers.hpp"
-#include "io/interruption.hpp"
+#include "app/option_parsers.hpp"
 
-namespace frictionid::cli {
+namespace frictionid::app {
 
 namespace {
-
-std::atomic<bool>* g_interrupted = nullptr;
-extern "C" void on_interrupt(int) {
-  g_interrupted->store(true);
-}
 
 LossKind parse_loss(const std::string& spec, double& scale) {
   const auto colon = spec.find(':');
@@ -69,10 +63,10 @@ std::string g(double x) {
 
 // No start value or bound is ignored or changed silently: what the fit would
 // not honour is an error.
-void check_option_semantics(const FitOptions& o, const FitSettings& s, const std::vector<int>& used,
+void check_option_semantics(const FitRequest& o, const FitSettings& s, const std::vector<int>& used,
                             const std::vector<bool>& start_given,
                             const std::vector<bool>& bounds_given) {
-  if (!o.initial.empty() && !o.no_global)
+  if (!o.start.empty() && !o.no_global)
     throw InputError(
         "--param sets where the local fit starts, which only --no-global uses (the global stage "
         "chooses its own starts); add --no-global or leave --param out");
@@ -94,20 +88,7 @@ void check_option_semantics(const FitOptions& o, const FitSettings& s, const std
 
 }  // namespace
 
-bool show_progress(const FitOptions& o) {
-  return o.progress || ::isatty(STDERR_FILENO);
-}
-
-const std::atomic<bool>* install_interrupt_handler() {
-  g_interrupted = &interrupt_flag();
-  std::signal(SIGINT, on_interrupt);
-  std::signal(SIGTERM, on_interrupt);
-  std::signal(SIGHUP, on_interrupt);
-  return g_interrupted;
-}
-
-FitSettings fit_settings_from_options(const FitOptions& o, const std::string& model, bool lenient) {
-  if (o.report.empty()) throw InputError("fit needs --report DIR");
+FitSettings fit_settings(const FitRequest& o, const std::string& model, bool lenient) {
   if (o.starts < 1) throw InputError("--starts must be at least 1");
   if (o.global_evaluations < 10) throw InputError("--global-evaluations must be at least 10");
   if (o.global_subsample < 1) throw InputError("--global-subsample must be at least 1");
@@ -117,30 +98,31 @@ FitSettings fit_settings_from_options(const FitOptions& o, const std::string& mo
   FitSettings s = FitSettings::defaults(*kind, law, pressure_law_label(law, o.pressure));
   const auto used = model_parameters(s.model, s.law.kind);
   std::vector<bool> start_given(s.params.size(), false), bounds_given(s.params.size(), false);
-  if (!o.initial.empty())
-    for (const auto& [name, v] : parse_assignments("--param", o.initial)) {
-      const int i = model_param_index("--param", name, used, model, lenient);
-      if (i < 0) continue;
-      s.params[i].initial = v;
-      start_given[i] = true;
-    }
-  if (!o.bounds.empty())
-    for (const auto& [name, lohi] : parse_bounds("--bounds", o.bounds)) {
-      const int i = model_param_index("--bounds", name, used, model, lenient);
-      if (i < 0) continue;
-      if (s.params[i].log_scale && !(lohi.first > 0.0))
-        throw InputError("--bounds: " + name + " must stay > 0 (lower bound > 0)");
-      s.params[i].lower = lohi.first;
-      s.params[i].upper = lohi.second;
-      bounds_given[i] = true;
-    }
-  if (!o.fix.empty())
-    for (const auto& [name, v] : parse_assignments("--fix", o.fix)) {
-      const int i = model_param_index("--fix", name, used, model, lenient);
-      if (i < 0) continue;
-      s.params[i].fixed = true;
-      s.params[i].initial = v;
-    }
+  check_values("--param", o.start);
+  check_bounds("--bounds", o.bounds);
+  check_values("--fix", o.fix);
+  check_names("--channels", o.channels);
+  for (const auto& [name, v] : o.start) {
+    const int i = model_param_index("--param", name, used, model, lenient);
+    if (i < 0) continue;
+    s.params[i].initial = v;
+    start_given[i] = true;
+  }
+  for (const auto& [name, lohi] : o.bounds) {
+    const int i = model_param_index("--bounds", name, used, model, lenient);
+    if (i < 0) continue;
+    if (s.params[i].log_scale && !(lohi.first > 0.0))
+      throw InputError("--bounds: " + name + " must stay > 0 (lower bound > 0)");
+    s.params[i].lower = lohi.first;
+    s.params[i].upper = lohi.second;
+    bounds_given[i] = true;
+  }
+  for (const auto& [name, v] : o.fix) {
+    const int i = model_param_index("--fix", name, used, model, lenient);
+    if (i < 0) continue;
+    s.params[i].fixed = true;
+    s.params[i].initial = v;
+  }
   // The exact model fits the exponent of a power law: the report names the law without the
   // number given on the command line, which was only a shape to start from.
   if (s.model == ModelKind::Exact && s.law.kind == model::PressureKind::Power &&
@@ -150,18 +132,17 @@ FitSettings fit_settings_from_options(const FitOptions& o, const std::string& mo
     if (s.params[i].fixed && s.params[i].log_scale && !(s.params[i].initial > 0.0))
       throw InputError(std::string("--fix: ") + param_names()[i] + " must be > 0");
   check_option_semantics(o, s, used, start_given, bounds_given);
-  if (!o.channels.empty())
-    for (const auto& name : parse_name_list("--channels", o.channels)) {
-      bool found = false;
-      for (Channel c : kAllChannels)
-        if (name == channel_name(c)) {
-          s.channels.push_back(c);
-          found = true;
-        }
-      if (!found)
-        throw InputError("--channels: unknown channel '" + name +
-                         "' (expected T_x, T_y, M_z, M_roll)");
-    }
+  for (const auto& name : o.channels) {
+    bool found = false;
+    for (Channel c : kAllChannels)
+      if (name == channel_name(c)) {
+        s.channels.push_back(c);
+        found = true;
+      }
+    if (!found)
+      throw InputError("--channels: unknown channel '" + name +
+                       "' (expected T_x, T_y, M_z, M_roll)");
+  }
   s.loss = parse_loss(o.loss, s.loss_scale);
   s.noise_model = parse_noise_model(o.noise_model);
   s.intervals = o.intervals == "sandwich"  ? IntervalMethod::Sandwich
@@ -174,8 +155,18 @@ FitSettings fit_settings_from_options(const FitOptions& o, const std::string& mo
     throw InputError("--bootstrap must be 0 (none) to 100000 replicates");
   s.bootstrap = o.bootstrap;
   s.starts = o.starts;
+  if (o.seed > kMaxFitSeed)
+    throw InputError("--seed", 0, 0,
+                     "got '" + std::to_string(o.seed) +
+                         "' (too large); expected a whole number from 0 to " +
+                         std::to_string(kMaxFitSeed));
   s.seed = o.seed;
   s.global = !o.no_global;
+  static const char* const kAlgorithms[] = {"crs2", "isres", "direct", "esch", "random"};
+  if (std::find(std::begin(kAlgorithms), std::end(kAlgorithms), o.global_algorithm) ==
+      std::end(kAlgorithms))
+    throw InputError("--global-algorithm '" + o.global_algorithm +
+                     "': expected crs2, isres, direct, esch or random");
   s.global_algorithm = o.global_algorithm;
   s.global_evaluations = o.global_evaluations;
   s.global_subsample = o.global_subsample;
@@ -185,4 +176,12 @@ FitSettings fit_settings_from_options(const FitOptions& o, const std::string& mo
   return s;
 }
 
-}  // namespace frictionid::cli
+FitResult fit_dataset(const FitSettings& s, const Dataset& data, FitObserver* observer) {
+  try {
+    return Fitter(s).fit(data, observer);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(data.source, 0, 0, e.what());
+  }
+}
+
+}  // namespace frictionid::app

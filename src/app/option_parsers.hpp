@@ -31,6 +31,22 @@ ColumnMap parse_column_map(const std::string& spec);
 // table file's errors keep naming the file, line and column.
 model::PressureLaw<double> parse_pressure_option(const std::string& spec);
 
+// The checks of parse_column_map for a map built elsewhere (Python's dict); messages quote it as
+// canonical=header,... text.
+ColumnMap column_map(const std::map<std::string, std::string>& canonical_to_header);
+
+// The checks parse_assignments and parse_bounds make of each value, for values given as numbers
+// (Python): finite, and lo < hi. Names are checked by whoever knows them (the fit settings).
+void check_values(const std::string& option, const std::map<std::string, double>& values);
+void check_bounds(const std::string& option,
+                  const std::map<std::string, std::pair<double, double>>& bounds);
+
+// The checks parse_name_list makes of a list given as names: none empty, none twice.
+void check_names(const std::string& option, const std::vector<std::string>& names);
+
+// "2000,4000" -> {2000, 4000}: strict finite numbers (parse_number). For --loads, --slip-angles.
+std::vector<double> parse_number_list(const std::string& option, const std::string& spec);
+
 // "T_x,M_z" -> {"T_x", "M_z"} in the given order. For --channels.
 std::vector<std::string> parse_name_list(const std::string& option, const std::string& spec);
 

@@ -15,7 +15,7 @@
 #include <frictionid/fit_result.hpp>
 #include <frictionid/fit_settings.hpp>
 
-namespace frictionid::cli {
+namespace frictionid::app {
 
 struct WarmStart {
   std::string label;                                        // the run it comes from
@@ -40,4 +40,4 @@ inline constexpr double kWarmMisfitRatio = 2.0;
 std::optional<FitResult> fit_warm(const FitSettings& s, const WarmStart& warm, const Dataset& data,
                                   FitObserver* observer);
 
-}  // namespace frictionid::cli
+}  // namespace frictionid::app

@@ -1,22 +1,23 @@
-#include "cli/model_setup.hpp"
+#include "app/model_setup.hpp"
 
 #include <cmath>
 
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/pressure_law_reader.hpp>
-#include "cli/option_parsers.hpp"
+#include "app/option_parsers.hpp"
 
-namespace frictionid::cli {
+namespace frictionid::app {
 
-ModelSetup make_model_setup(const std::string& model, const std::string& pressure,
-                            const std::string& param_spec) {
+ModelSetup make_model_setup(const ModelRequest& r) {
+  const std::string& model = r.model;
+  const std::string& pressure = r.pressure;
   ModelSetup s;
   const auto kind = parse_model_kind(model);
   if (!kind) throw InputError("--model '" + model + "': expected seed, corrected or exact");
   s.kind = *kind;
   s.law = parse_pressure_option(pressure);
-  const auto given = param_spec.empty() ? std::map<std::string, double>{}
-                                        : parse_assignments("--param", param_spec);
+  const ParameterValues& given = r.params;
+  check_values("--param", given);
   for (const auto& [name, value] : given) {
     if (!param_index(name))
       throw InputError("--param: unknown parameter '" + name +
@@ -47,4 +48,4 @@ nlohmann::ordered_json model_json(const ModelSetup& s) {
   return {{"model", model_name(s.kind)}, {"pressure", s.law_label}, {"parameters", params}};
 }
 
-}  // namespace frictionid::cli
+}  // namespace frictionid::app

@@ -1,4 +1,4 @@
-#include "cli/option_parsers.hpp"
+#include "app/option_parsers.hpp"
 
 #include <gtest/gtest.h>
 

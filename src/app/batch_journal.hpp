@@ -19,7 +19,7 @@
 
 #include <frictionid/io/summary_table.hpp>
 
-namespace frictionid::cli {
+namespace frictionid::app {
 
 class BatchJournal {
  public:
@@ -59,4 +59,4 @@ inline constexpr std::chrono::milliseconds kJournalSyncInterval{500};
 
 std::string hex_key(std::uint64_t key);
 
-}  // namespace frictionid::cli
+}  // namespace frictionid::app

@@ -1,8 +1,10 @@
-#include "cli/option_parsers.hpp"
+#include "app/option_parsers.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <set>
 #include <system_error>
@@ -19,6 +21,17 @@ using text::trim;
 
 bool is_name_char(char c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+// A value for a message: the fewest digits that read back as the same double (2, 0.1, 1e-07);
+// nan and inf as such.
+std::string number_text(double x) {
+  char buf[32];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+    if (std::strtod(buf, nullptr) == x) break;
+  }
+  return buf;
 }
 
 // The whole text, quoted, with control characters escaped.
@@ -186,17 +199,18 @@ model::PressureLaw<double> parse_pressure_option(const std::string& spec) {
   }
 }
 
-ColumnMap parse_column_map(const std::string& spec) {
+namespace {
+
+// The checks of a column map, whichever front end wrote it; `spec` is its text for messages.
+ColumnMap checked_column_map(const std::vector<std::pair<std::string, std::string>>& pairs,
+                             const std::string& spec) {
   static const std::string option = "--columns";
   static const char* const kExpected =
       "canonical=header[,canonical=header...], e.g. v_x=speed,omega=spin";
   ColumnMap map;
-  if (trim(spec).empty()) return map;
   const auto& canonical_names = dataset_column_names();
   std::set<std::string> headers;
-  for (const std::string_view item : split_items(option, spec, kExpected)) {
-    const auto [canonical_view, header_view] = split_assignment(option, spec, item, kExpected);
-    const std::string canonical(canonical_view), header(header_view);
+  for (const auto& [canonical, header] : pairs) {
     if (std::find(canonical_names.begin(), canonical_names.end(), canonical) ==
         canonical_names.end()) {
       std::string hint, list;
@@ -239,6 +253,81 @@ ColumnMap parse_column_map(const std::string& spec) {
                              canonical_names[a] + " and " + canonical_names[b] +
                              "; map the other one to a different name");
   return map;
+}
+
+}  // namespace
+
+ColumnMap parse_column_map(const std::string& spec) {
+  static const std::string option = "--columns";
+  static const char* const kExpected =
+      "canonical=header[,canonical=header...], e.g. v_x=speed,omega=spin";
+  if (trim(spec).empty()) return {};
+  std::vector<std::pair<std::string, std::string>> pairs;
+  for (const std::string_view item : split_items(option, spec, kExpected)) {
+    const auto [canonical, header] = split_assignment(option, spec, item, kExpected);
+    pairs.emplace_back(canonical, header);
+  }
+  return checked_column_map(pairs, spec);
+}
+
+ColumnMap column_map(const std::map<std::string, std::string>& canonical_to_header) {
+  std::vector<std::pair<std::string, std::string>> pairs(canonical_to_header.begin(),
+                                                         canonical_to_header.end());
+  std::string spec;
+  for (const auto& [canonical, header] : pairs)
+    spec += (spec.empty() ? "" : ",") + canonical + "=" + header;
+  return checked_column_map(pairs, spec);
+}
+
+void check_values(const std::string& option, const std::map<std::string, double>& values) {
+  for (const auto& [name, value] : values)
+    if (!std::isfinite(value))
+      throw InputError(
+          option, 0, 0,
+          "value for " + quoted(name) + " is " + number_text(value) + "; expected a finite number");
+}
+
+void check_bounds(const std::string& option,
+                  const std::map<std::string, std::pair<double, double>>& bounds) {
+  std::string spec;  // the bounds as --bounds text, for messages worded as parse_bounds words them
+  for (const auto& [name, lohi] : bounds)
+    spec += (spec.empty() ? "" : ",") + name + "=" + number_text(lohi.first) + ":" +
+            number_text(lohi.second);
+  for (const auto& [name, lohi] : bounds) {
+    const auto [lo, hi] = lohi;
+    const std::string range = number_text(lo) + ":" + number_text(hi);
+    if (!std::isfinite(lo) || !std::isfinite(hi))
+      throw InputError(option, 0, 0,
+                       "bounds for " + quoted(name) + " are " + quoted(range) +
+                           ": expected finite numbers (in " + quoted(spec) + ")");
+    if (!(lo < hi))
+      throw InputError(option, 0, 0,
+                       "bounds for " + quoted(name) + " are " + quoted(range) +
+                           ": expected lo < hi (in " + quoted(spec) + ")");
+  }
+}
+
+void check_names(const std::string& option, const std::vector<std::string>& names) {
+  std::set<std::string> seen;
+  for (const auto& name : names) {
+    if (name.empty()) throw InputError(option, 0, 0, "empty name in the list");
+    if (!seen.insert(name).second)
+      throw InputError(option, 0, 0, "name " + quoted(name) + " is given more than once");
+  }
+}
+
+std::vector<double> parse_number_list(const std::string& option, const std::string& spec) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (start <= spec.size()) {
+    const std::size_t comma = spec.find(',', start);
+    const std::string item =
+        spec.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    out.push_back(parse_number(option, item));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
 }
 
 }  // namespace frictionid

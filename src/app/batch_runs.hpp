@@ -10,15 +10,15 @@
 
 #include <frictionid/dataset.hpp>
 #include <frictionid/io/summary_table.hpp>
-#include "cli/commands.hpp"
+#include "app/requests.hpp"
 
-namespace frictionid::cli {
+namespace frictionid::app {
 
 struct BatchRun {
   std::string label;      // summary row label
   std::string directory;  // runs/<directory>: the label with unsafe characters replaced
   std::string path;       // the data file
-  FitOptions options;     // the command line's, with the manifest's per-run values applied
+  FitRequest options;     // the command line's, with the manifest's per-run values applied
   // With --group-by: the loaded file and the rows of this group (in file order); else null and
   // the run reads `path` itself, so that a bad file is a failed run, not a failed batch.
   std::shared_ptr<const Dataset> file_data;
@@ -31,8 +31,9 @@ struct BatchRun {
 // with no `path` column or a path that does not exist (naming manifest:line:column), a bad
 // per-run option value, an unknown --group-by column, two runs with the same label.
 // `key_extra` (e.g. the per-run report kind) enters every run's key.
-std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, const FitOptions& o,
-                                      const std::string& group_by, const std::string& key_extra);
+std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, const FitRequest& o,
+                                      const std::vector<std::string>& group_columns,
+                                      const std::string& key_extra);
 
 // Throws InputError (naming `where`) when a covariate (a manifest or --group-by column) would
 // take the name of one of the summary table's own columns.
@@ -45,4 +46,4 @@ void check_trend_x(const std::string& name, const std::vector<BatchRun>& runs);
 // The rows `rows` of d, every column (extra ones too) in that order.
 Dataset select_rows(const Dataset& d, const std::vector<std::size_t>& rows);
 
-}  // namespace frictionid::cli
+}  // namespace frictionid::app

@@ -5,21 +5,20 @@
 // DIR/shared.html (those rows as summary.html shows the runs' own fits).
 #pragma once
 
-#include <atomic>
 #include <string>
 #include <vector>
 
+#include <frictionid/fit_observer.hpp>
 #include <frictionid/fit_settings.hpp>
 #include <frictionid/io/summary_html.hpp>
 #include <frictionid/io/summary_table.hpp>
-#include "cli/batch_runs.hpp"
+#include "app/batch_runs.hpp"
 
-namespace frictionid::cli {
+namespace frictionid::app {
 
-// The parameter names of --shared (comma-separated), checked against the command line's own
-// settings (frictionid::check_shared_parameters); throws InputError before any run is fitted.
-std::vector<std::string> parse_shared_option(const std::string& text,
-                                             const FitSettings& command_line);
+// The parameter names of --shared (none: no joint fit) checked against the request's own settings
+// (frictionid::check_shared_parameters); throws InputError before any run is fitted.
+void check_shared_option(const std::vector<std::string>& shared, const FitSettings& command_line);
 
 // The same check for every run's settings (a manifest may fix or change the model per run);
 // throws InputError naming the run, before any run is fitted. Nothing to check without --shared.
@@ -31,8 +30,7 @@ void check_shared_parameters(const std::vector<BatchRun>& runs,
 // joint fit fails, InputError for a shared parameter some run's settings hold fixed or its model
 // does not read.
 void write_shared_fit(const std::vector<BatchRun>& runs, const std::vector<SummaryRow>& table,
-                      const std::vector<std::string>& shared, int threads,
-                      const std::atomic<bool>* interrupted, const std::string& dir,
-                      SummaryHtmlOptions page);
+                      const std::vector<std::string>& shared, int threads, FitObserver* observer,
+                      const std::string& dir, SummaryHtmlOptions page);
 
-}  // namespace frictionid::cli
+}  // namespace frictionid::app

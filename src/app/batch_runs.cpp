@@ -1,4 +1,4 @@
-#include "cli/batch_runs.hpp"
+#include "app/batch_runs.hpp"
 
 #include <glob.h>
 
@@ -14,10 +14,11 @@
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/parameters.hpp>
-#include "cli/fit_options.hpp"
-#include "cli/option_parsers.hpp"
+#include "app/fit_request.hpp"
+#include "app/option_parsers.hpp"
+#include "app/request_json.hpp"
 
-namespace frictionid::cli {
+namespace frictionid::app {
 
 namespace {
 
@@ -26,7 +27,7 @@ namespace fs = std::filesystem;
 // One file to fit, before --group-by splits it.
 struct BatchEntry {
   std::string path, label;
-  FitOptions options;
+  FitRequest options;
   std::vector<Covariate> covariates;
 };
 
@@ -135,16 +136,16 @@ std::vector<std::string> expand_input(const std::string& input) {
 }
 
 // Checks o as `fit` would, naming `where` (a manifest line) in the message.
-void check_options(const FitOptions& o, const std::string& file, std::size_t line) {
+void check_options(const FitRequest& o, const std::string& file, std::size_t line) {
   try {
-    (void)fit_settings_from_options(o, o.model);
+    (void)fit_settings(o, o.model);
   } catch (const InputError& e) {
     if (file.empty()) throw;
     throw InputError(file, line, 0, e.what());
   }
 }
 
-std::vector<BatchEntry> manifest_entries(const std::string& manifest, const FitOptions& o) {
+std::vector<BatchEntry> manifest_entries(const std::string& manifest, const FitRequest& o) {
   std::ifstream in(manifest);
   std::string text;
   std::getline(in, text);
@@ -183,8 +184,14 @@ std::vector<BatchEntry> manifest_entries(const std::string& manifest, const FitO
     e.label = label_col >= 0 && !cells[label_col].empty() ? cells[label_col] : stem_of(rel);
     e.options = o;
     if (pressure_col >= 0 && !cells[pressure_col].empty()) e.options.pressure = cells[pressure_col];
-    if (fix_col >= 0 && !cells[fix_col].empty()) e.options.fix = cells[fix_col];
-    if (channels_col >= 0 && !cells[channels_col].empty()) e.options.channels = cells[channels_col];
+    try {
+      if (fix_col >= 0 && !cells[fix_col].empty())
+        e.options.fix = parse_assignments("--fix", cells[fix_col]);
+      if (channels_col >= 0 && !cells[channels_col].empty())
+        e.options.channels = parse_name_list("--channels", cells[channels_col]);
+    } catch (const InputError& error) {
+      throw InputError(manifest, line, 0, error.what());
+    }
     check_options(e.options, manifest, line);
     for (std::size_t k = 0; k < header.size(); ++k)
       if (static_cast<int>(k) != path_col && static_cast<int>(k) != label_col)
@@ -228,13 +235,8 @@ std::vector<std::string> column_text(const Dataset& d, const std::string& name,
   throw InputError(path, 1, 0, "--group-by: no column '" + name + "' (columns: " + known + ")");
 }
 
-std::string options_text(const FitOptions& o) {
-  std::ostringstream s;
-  s << o.model << '\x1f' << o.pressure << '\x1f' << o.fix << '\x1f' << o.bounds << '\x1f'
-    << o.initial << '\x1f' << o.loss << '\x1f' << o.channels << '\x1f' << o.columns << '\x1f'
-    << o.noise_model << '\x1f' << o.starts << '\x1f' << o.seed << '\x1f' << o.global_evaluations
-    << '\x1f' << o.global_subsample << '\x1f' << o.no_global << '\x1f' << o.global_algorithm;
-  return s.str();
+std::string options_text(const FitRequest& o) {
+  return fit_request_json(o).dump();
 }
 
 // A label as a directory name: characters outside [A-Za-z0-9._+=-] become '_', and a leading
@@ -293,8 +295,9 @@ Dataset select_rows(const Dataset& d, const std::vector<std::size_t>& rows) {
   return out;
 }
 
-std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, const FitOptions& o,
-                                      const std::string& group_by, const std::string& key_extra) {
+std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, const FitRequest& o,
+                                      const std::vector<std::string>& group_columns,
+                                      const std::string& key_extra) {
   std::vector<BatchEntry> entries;
   for (const auto& input : inputs)
     for (const auto& file : expand_input(input)) {
@@ -307,8 +310,7 @@ std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, co
     }
   if (entries.empty()) throw InputError("batch: no CSV file to fit among the inputs");
 
-  const auto group_columns =
-      group_by.empty() ? std::vector<std::string>{} : parse_name_list("--group-by", group_by);
+  check_names("--group-by", group_columns);
   for (const auto& name : group_columns) check_covariate_name(name, "--group-by");
   std::vector<BatchRun> runs;
   for (auto& e : entries) {
@@ -319,8 +321,7 @@ std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, co
       runs.push_back({e.label, "", e.path, e.options, nullptr, {}, e.covariates, file_key});
       continue;
     }
-    auto data = std::make_shared<const Dataset>(
-        load_dataset_csv(e.path, parse_column_map(e.options.columns)));
+    auto data = std::make_shared<const Dataset>(load_dataset_csv(e.path, e.options.columns));
     std::vector<std::vector<std::string>> columns;
     for (const auto& name : group_columns) columns.push_back(column_text(*data, name, e.path));
     std::map<std::vector<std::string>, std::vector<std::size_t>> groups;
@@ -374,4 +375,4 @@ void check_trend_x(const std::string& name, const std::vector<BatchRun>& runs) {
   throw InputError("--trend-x: no covariate '" + name + "'; the covariates are: " + list);
 }
 
-}  // namespace frictionid::cli
+}  // namespace frictionid::app

@@ -1,4 +1,4 @@
-#include "cli/batch_journal.hpp"
+#include "app/batch_journal.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -9,7 +9,7 @@
 #include <fstream>
 #include <stdexcept>
 
-namespace frictionid::cli {
+namespace frictionid::app {
 
 std::string hex_key(std::uint64_t key) {
   char buf[17];
@@ -85,4 +85,4 @@ void BatchJournal::sync_locked() {
   last_sync_ = std::chrono::steady_clock::now();
 }
 
-}  // namespace frictionid::cli
+}  // namespace frictionid::app

@@ -1,0 +1,41 @@
+// What a model predicts: at one point, for every row of a kinematics CSV, or for columns held in
+// memory (`frictionid eval`, `frictionid.evaluate()`).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/model_setup.hpp"
+#include "app/requests.hpp"
+
+namespace frictionid::app {
+
+// {T_x, T_y, M_z, M_roll, N} at r's point (vx and omega required, vy default 0).
+nlohmann::ordered_json evaluate_point(const EvalRequest& r);
+
+// Every row of r.input (dataset columns; channels optional) written to r.output: the row as read,
+// the file's other columns, then the predictions T_x,T_y,M_z,M_roll,N (suffixed _model where the
+// input already has such a column). Returns the rows written.
+std::size_t evaluate_file(const EvalRequest& r);
+
+// Kinematics columns of one length: v_x, v_y, omega finite; N and R finite and > 0.
+struct KinematicsColumns {
+  const double* v_x;
+  const double* v_y;
+  const double* omega;
+  const double* N;
+  const double* R;
+  std::size_t rows;
+};
+
+struct ResultantColumns {
+  std::vector<double> T_x, T_y, M_z, M_roll, N;
+};
+
+// Throws InputError naming the column and the index of the first bad value.
+ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& k);
+
+}  // namespace frictionid::app

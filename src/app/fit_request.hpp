@@ -1,0 +1,28 @@
+// A FitRequest turned into the identification layer's FitSettings, with every check a fit makes
+// before it reads data (docs/design.md §3.5), and the fit of a loaded dataset.
+#pragma once
+
+#include <string>
+
+#include <frictionid/dataset.hpp>
+#include <frictionid/fit_observer.hpp>
+#include <frictionid/fit_result.hpp>
+#include <frictionid/fit_settings.hpp>
+#include "app/requests.hpp"
+
+namespace frictionid::app {
+
+// The global stage seeds NLopt, which keeps only 32 bits of a seed: larger seeds are rejected
+// instead of aliasing another seed.
+inline constexpr unsigned long long kMaxFitSeed = 4'294'967'295ULL;
+
+// Throws InputError on bad values, naming the option (e.g. "--fix"). lenient: fixed, bounded or
+// started parameters that the model does not use are ignored (compare applies one request to
+// several models) instead of rejected.
+FitSettings fit_settings(const FitRequest& r, const std::string& model, bool lenient = false);
+
+// Fits `data` with `s`; a dataset the fit rejects (std::invalid_argument) becomes an InputError
+// naming the data's source, as for a file the reader rejects. FitError passes through.
+FitResult fit_dataset(const FitSettings& s, const Dataset& data, FitObserver* observer);
+
+}  // namespace frictionid::app

@@ -1,0 +1,50 @@
+#include "app/request_json.hpp"
+
+namespace frictionid::app {
+
+nlohmann::ordered_json fit_request_json(const FitRequest& r) {
+  nlohmann::ordered_json bounds = nlohmann::ordered_json::object();
+  for (const auto& [name, lohi] : r.bounds) bounds[name] = {lohi.first, lohi.second};
+  return {{"model", r.model},
+          {"pressure", r.pressure},
+          {"fix", r.fix},
+          {"bounds", bounds},
+          {"start", r.start},
+          {"loss", r.loss},
+          {"channels", r.channels},
+          {"columns", r.columns.canonical_to_header},
+          {"noise_model", r.noise_model},
+          {"intervals", r.intervals},
+          {"bootstrap", r.bootstrap},
+          {"starts", r.starts},
+          {"seed", r.seed},
+          {"global_evaluations", r.global_evaluations},
+          {"global_subsample", r.global_subsample},
+          {"no_global", r.no_global},
+          {"global_algorithm", r.global_algorithm}};
+}
+
+FitRequest fit_request_from_json(const nlohmann::ordered_json& j) {
+  FitRequest r;
+  r.model = j.at("model").get<std::string>();
+  r.pressure = j.at("pressure").get<std::string>();
+  r.fix = j.at("fix").get<ParameterValues>();
+  for (const auto& [name, lohi] : j.at("bounds").items())
+    r.bounds[name] = {lohi.at(0).get<double>(), lohi.at(1).get<double>()};
+  r.start = j.at("start").get<ParameterValues>();
+  r.loss = j.at("loss").get<std::string>();
+  r.channels = j.at("channels").get<std::vector<std::string>>();
+  r.columns.canonical_to_header = j.at("columns").get<std::map<std::string, std::string>>();
+  r.noise_model = j.at("noise_model").get<std::string>();
+  r.intervals = j.at("intervals").get<std::string>();
+  r.bootstrap = j.at("bootstrap").get<int>();
+  r.starts = j.at("starts").get<int>();
+  r.seed = j.at("seed").get<unsigned long long>();
+  r.global_evaluations = j.at("global_evaluations").get<long>();
+  r.global_subsample = j.at("global_subsample").get<std::size_t>();
+  r.no_global = j.at("no_global").get<bool>();
+  r.global_algorithm = j.at("global_algorithm").get<std::string>();
+  return r;
+}
+
+}  // namespace frictionid::app
