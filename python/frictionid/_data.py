@@ -28,16 +28,18 @@ def column_map(columns: Optional[Mapping[str, str]]) -> Dict[str, str]:
     return _frictionid.column_map({str(k): str(v) for k, v in (columns or {}).items()})
 
 
-def load(data: DataLike, columns: Optional[Mapping[str, str]] = None) -> "_frictionid.Dataset":
+def load(data: DataLike, columns: Optional[Mapping[str, str]] = None,
+         threads: int = 0) -> "_frictionid.Dataset":
     """The Dataset of ``data``: a CSV path read by the C++ reader, or named columns in memory.
 
     ``columns`` renames as the command line's ``--columns`` does: canonical name -> the name in
-    the file or frame.
+    the file or frame. ``threads`` bounds the threads that read a large file in parts (0: every
+    core).
     """
     if isinstance(data, _frictionid.Dataset):
         return data
     if isinstance(data, (str, os.PathLike)):
-        return _frictionid.load_dataset_csv(os.fspath(data), column_map(columns))
+        return _frictionid.load_dataset_csv(os.fspath(data), column_map(columns), threads)
     if not hasattr(data, "keys"):
         raise TypeError(
             "data must be a CSV path, a pandas DataFrame or a dict of arrays, "

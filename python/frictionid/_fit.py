@@ -74,7 +74,7 @@ def fit(
 
     The GIL is released while the fit runs: fits in several Python threads run in parallel.
     """
-    dataset = _data.load(data, columns)
+    dataset = _data.load(data, columns, threads)
     o = options(model, pressure, fix=fix, bounds=bounds, start=start, loss=loss,
                 channels=channels, noise_model=noise_model, seed=seed, threads=threads,
                 starts=starts, global_search=global_search, global_algorithm=global_algorithm,

@@ -29,6 +29,7 @@
 #include "cli/exit_codes.hpp"
 #include "cli/signals.hpp"
 #include "cli/terminal_observer.hpp"
+#include "identify/thread_budget.hpp"
 #include "io/atomic_file.hpp"
 #include "io/report_directory_lock.hpp"
 
@@ -149,10 +150,14 @@ int run_batch(const BatchRequest& o) {
   }
   const std::size_t from_journal = runs.size() - pending.size();
 
-  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t jobs =
-      std::clamp<std::size_t>(o.jobs > 0 ? static_cast<std::size_t>(o.jobs) : hardware, 1,
-                              std::max<std::size_t>(1, pending.size()));
+  // --threads bounds every busy thread of the batch: its runs at once and whatever each run's
+  // reading, fitting and report take (identify/thread_budget.hpp). --jobs is at most that.
+  ThreadBudget budget(o.fit.threads);
+  const ThreadBudgetScope budget_scope(&budget);
+  const std::size_t jobs = std::clamp<std::size_t>(
+      o.jobs > 0 ? static_cast<std::size_t>(o.jobs) : static_cast<std::size_t>(budget.total()), 1,
+      std::min<std::size_t>(static_cast<std::size_t>(budget.total()),
+                            std::max<std::size_t>(1, pending.size())));
   // Several fits at once each take one thread; alone, a fit may use --threads. The results do
   // not depend on either.
   const BatchContext context{o, fs::path(o.fit.report), jobs == 1 ? o.fit.threads : 1, interrupted};
@@ -221,9 +226,15 @@ int run_batch(const BatchRequest& o) {
     }
   };
   std::vector<std::thread> threads;
-  for (std::size_t t = 1; t < jobs; ++t) threads.emplace_back(worker);
+  const int helpers = budget.acquire(static_cast<int>(jobs) - 1);
+  for (int t = 0; t < helpers; ++t)
+    threads.emplace_back([&] {
+      const ThreadBudgetScope scope(&budget);
+      worker();
+    });
   worker();
   for (auto& t : threads) t.join();
+  budget.release(helpers);
   if (progress && fitted > 0) std::fprintf(stderr, "\r%80s\r", "");
   if (first_error) std::rethrow_exception(first_error);
   journal.sync();  // every line and run report durable before the summary names them

@@ -11,6 +11,7 @@
 #include "cli/exit_codes.hpp"
 #include "cli/signals.hpp"
 #include "cli/terminal_observer.hpp"
+#include "identify/thread_budget.hpp"
 #include "io/report_directory_lock.hpp"
 #include "io/report_transaction.hpp"
 
@@ -25,6 +26,9 @@ int run_compare(const app::CompareRequest& o) {
   }
   if (o.fit.report.empty()) throw InputError("compare needs --report DIR");
   const std::atomic<bool>* interrupted = install_interrupt_handler();
+  // Reading, fitting and plotting share --threads (identify/thread_budget.hpp).
+  ThreadBudget budget(o.fit.threads);
+  const ThreadBudgetScope budget_scope(&budget);
   // Held for the whole run, so that two runs into one directory cannot interleave.
   const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait);
   check_report_directory_replaceable(o.fit.report);

@@ -14,6 +14,7 @@
 #include "cli/exit_codes.hpp"
 #include "cli/signals.hpp"
 #include "cli/terminal_observer.hpp"
+#include "identify/thread_budget.hpp"
 #include "io/report_directory_lock.hpp"
 #include "io/report_transaction.hpp"
 
@@ -24,6 +25,9 @@ int run_fit(const app::FitRequest& o) {
   const FitSettings s = app::fit_settings(o, o.model);
   if (o.report.empty()) throw InputError("fit needs --report DIR");
   const std::atomic<bool>* interrupted = install_interrupt_handler();
+  // Reading, fitting and plotting share --threads (identify/thread_budget.hpp).
+  ThreadBudget budget(o.threads);
+  const ThreadBudgetScope budget_scope(&budget);
   // Held for the whole run, so that two fits into one directory cannot interleave.
   const ReportDirectoryLock lock(o.report, /*wait=*/!o.no_wait);
   check_report_directory_replaceable(o.report);

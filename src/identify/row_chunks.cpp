@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <climits>
 #include <exception>
 #include <mutex>
 #include <thread>
 #include <vector>
+
+#include "identify/thread_budget.hpp"
 
 namespace frictionid {
 
@@ -17,9 +20,22 @@ int resolve_thread_count(int requested) {
 
 namespace {
 
-// Runs work(0..count-1) on `parts` threads (the caller's among them), each taking the next index.
+// Runs work(0..count-1) on `parts` threads (the caller's among them), each taking the next index;
+// on fewer when the calling thread's budget (thread_budget.hpp) has fewer to give.
 void run_on_threads(std::size_t count, std::size_t parts,
                     const std::function<void(std::size_t)>& work) {
+  ThreadBudget* const budget = current_thread_budget();
+  if (budget && parts > 1)
+    parts = 1 + static_cast<std::size_t>(budget->acquire(static_cast<int>(
+                    std::min<std::size_t>(parts - 1, static_cast<std::size_t>(INT_MAX)))));
+  // Given back when the threads have joined, also when work threw.
+  struct Release {
+    ThreadBudget* budget;
+    std::size_t extra;
+    ~Release() {
+      if (budget && extra > 0) budget->release(static_cast<int>(extra));
+    }
+  } release{budget, parts > 0 ? parts - 1 : 0};
   if (parts <= 1) {
     for (std::size_t c = 0; c < count; ++c) work(c);
     return;
@@ -28,6 +44,7 @@ void run_on_threads(std::size_t count, std::size_t parts,
   std::exception_ptr error;
   std::mutex error_mutex;
   auto run = [&] {
+    const ThreadBudgetScope scope(budget);  // threads started here draw from the same budget
     for (;;) {
       const std::size_t c = next.fetch_add(1, std::memory_order_relaxed);
       if (c >= count) return;

@@ -24,6 +24,7 @@
 #include "app/fit_request.hpp"
 #include "app/request_json.hpp"
 #include "app/requests.hpp"
+#include "identify/thread_budget.hpp"
 #include "io/atomic_file.hpp"
 #include "python/bindings.hpp"
 
@@ -118,6 +119,9 @@ std::pair<std::string, std::optional<std::string>> fit_run(
   SummaryRow row;
   {
     py::gil_scoped_release release;
+    // A worker's `threads` bound the run's reading and fitting together (thread_budget.hpp).
+    ThreadBudget budget(threads);
+    const ThreadBudgetScope scope(&budget);
     row = app::fit_batch_run(run, threads, nullptr, [&](const FitResult& r, const Dataset&) {
       if (report) report_text = dump(report_json(r), 2) + "\n";
     });

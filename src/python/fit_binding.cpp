@@ -13,6 +13,7 @@
 #include "app/option_parsers.hpp"
 #include "app/request_text.hpp"
 #include "app/requests.hpp"
+#include "identify/thread_budget.hpp"
 #include "python/bindings.hpp"
 #include "python/dataset_from_columns.hpp"
 #include "python/json_values.hpp"
@@ -46,6 +47,8 @@ std::shared_ptr<FitOutput> run_fit(const std::shared_ptr<Dataset>& data,
   PythonObserver observer;
   try {
     py::gil_scoped_release release;
+    ThreadBudget budget(request.threads);  // threads= bounds the fit's and its report's threads
+    const ThreadBudgetScope scope(&budget);
     out->result = app::fit_dataset(s, *data, &observer);
   } catch (const FitError&) {
     observer.rethrow_pending();  // Ctrl-C: KeyboardInterrupt rather than FitError("interrupted")
@@ -66,12 +69,16 @@ void register_fit(py::module_& m) {
 
   m.def(
       "load_dataset_csv",
-      [](const std::string& path, const std::map<std::string, std::string>& columns) {
+      [](const std::string& path, const std::map<std::string, std::string>& columns, int threads) {
         const ColumnMap map = column_map(columns);
+        if (threads < 0) throw InputError("--threads must be 0 (every hardware thread) or more");
         py::gil_scoped_release release;
+        ThreadBudget budget(threads);  // a large file is read in parts, one per thread
+        const ThreadBudgetScope scope(&budget);
         return std::make_shared<Dataset>(load_dataset_csv(path, map));
       },
-      py::arg("path"), py::arg("columns") = std::map<std::string, std::string>{});
+      py::arg("path"), py::arg("columns") = std::map<std::string, std::string>{},
+      py::arg("threads") = 0);
   m.def("dataset_from_columns", &from_columns, py::arg("columns"), py::arg("source"));
   m.def(
       "column_map",
@@ -126,11 +133,15 @@ void register_fit(py::module_& m) {
           "report.json's content as Python values (no JSON text in between).")
       .def(
           "write_report",
-          [](const FitOutput& f, const std::string& dir) {
+          [](const FitOutput& f, const std::string& dir, int threads) {
             py::gil_scoped_release release;
-            return write_report(dir, f.result, *f.data);
+            ThreadBudget budget(threads);  // the plots are drawn side by side
+            const ThreadBudgetScope scope(&budget);
+            ReportOptions options;
+            options.threads = threads;
+            return write_report(dir, f.result, *f.data, options);
           },
-          py::arg("dir"))
+          py::arg("dir"), py::arg("threads") = 0)
       .def_property_readonly("data", [](const FitOutput& f) { return f.data; })
       .def_property_readonly("eps", [](const FitOutput& f) { return to_numpy(f.result.eps); })
       .def_property_readonly("fitted",
