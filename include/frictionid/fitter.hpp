@@ -3,20 +3,13 @@
 // writes to a stream: progress, diagnostics and cancellation go through a FitObserver.
 #pragma once
 
-#include <stdexcept>
-
 #include <frictionid/dataset.hpp>
+#include <frictionid/fit_error.hpp>
 #include <frictionid/fit_observer.hpp>
 #include <frictionid/fit_result.hpp>
 #include <frictionid/fit_settings.hpp>
 
 namespace frictionid {
-
-// A fit that cannot produce a usable result (every start failed, interrupted, model not finite).
-class FitError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 class Fitter {
  public:

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <memory>
 
-#include <frictionid/fitter.hpp>
+#include <frictionid/fit_error.hpp>
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/joint_fit.hpp>

@@ -12,7 +12,7 @@
 #include <optional>
 #include <thread>
 
-#include <frictionid/fitter.hpp>
+#include <frictionid/fit_error.hpp>
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/report_writer.hpp>

@@ -1,7 +1,7 @@
 // frictionid compare: fit several model variants to the same rows, report them side by side.
 #include <cstdio>
 
-#include <frictionid/fitter.hpp>
+#include <frictionid/fit_error.hpp>
 #include <frictionid/io/compare_report.hpp>
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>

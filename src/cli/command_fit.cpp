@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include <frictionid/fitter.hpp>
+#include <frictionid/fit_error.hpp>
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/report_writer.hpp>

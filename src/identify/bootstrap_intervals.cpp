@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include <frictionid/fitter.hpp>
+#include <frictionid/fit_error.hpp>
 
 #include "identify/fit_problem.hpp"
 #include "identify/row_chunks.hpp"

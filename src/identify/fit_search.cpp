@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include <frictionid/fitter.hpp>
+#include <frictionid/fit_error.hpp>
 
 #include "identify/fit_problem.hpp"
 #include "identify/global_search.hpp"

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <optional>
 
-#include <frictionid/fitter.hpp>
+#include <frictionid/fit_error.hpp>
 
 #include "identify/row_chunks.hpp"
 #include "identify/statistics.hpp"

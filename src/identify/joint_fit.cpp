@@ -11,7 +11,7 @@
 #include <optional>
 #include <set>
 
-#include <frictionid/fitter.hpp>
+#include <frictionid/fit_error.hpp>
 
 #include "identify/fit_statistics.hpp"
 #include "identify/fitted_run.hpp"

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <frictionid/fitter.hpp>
+#include <frictionid/fit_error.hpp>
 
 #include "identify/fit_problem.hpp"
 #include "identify/log_sum.hpp"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include <frictionid/fitter.hpp>
+#include <frictionid/fit_error.hpp>
 
 #include "identify/statistics.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <pybind11/stl.h>
 
-#include <frictionid/fitter.hpp>
+#include <frictionid/fit_error.hpp>
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/report_writer.hpp>

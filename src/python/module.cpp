@@ -3,7 +3,7 @@
 // becomes frictionid.InputError (a ValueError), FitError frictionid.FitError (a RuntimeError).
 #include <pybind11/pybind11.h>
 
-#include <frictionid/fitter.hpp>
+#include <frictionid/fit_error.hpp>
 #include <frictionid/io/input_error.hpp>
 #include "python/bindings.hpp"
 
