@@ -1,10 +1,12 @@
 #include "io/html_page.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "io/report_parts.hpp"
+#include "io/svg_plot.hpp"
 
 namespace frictionid::html {
 namespace {
@@ -72,6 +74,12 @@ std::string page_end() {
 std::string num_cell(const std::optional<double>& x) {
   if (!x || !std::isfinite(*x)) return "<td class=\"num\">" + num(x) + "</td>";
   return fmt::format("<td class=\"num\" data-value=\"{}\">{}</td>", *x, num(*x));
+}
+
+std::string isolated(const std::string& text) {
+  const bool ascii = std::all_of(text.begin(), text.end(),
+                                 [](char c) { return static_cast<unsigned char>(c) < 0x80; });
+  return ascii ? svg::escape(text) : "<bdi>" + svg::escape(text) + "</bdi>";
 }
 
 }  // namespace frictionid::html
