@@ -30,9 +30,20 @@ SummaryRow ok_run(const std::string& label) {
   return r;
 }
 
-TEST(HtmlIsolation, NonAsciiTextIsWrappedInBdiAndAsciiTextIsNot) {
+TEST(HtmlIsolation, TextThatCanChangeDirectionIsWrappedInBdiOtherTextIsNot) {
   EXPECT_EQ(html::isolated(kRightToLeft), "<bdi>" + kRightToLeft + "</bdi>");
+  for (const std::string control :
+       {"\xd8\x9c", "\xe2\x80\x8e", "\xe2\x80\x8f", "\xe2\x80\xaa", "\xe2\x81\xa6", "\xe2\x81\xa9"})
+    EXPECT_EQ(html::isolated("a" + control), "<bdi>a" + control + "</bdi>");
+  const std::string hebrew = "\xd7\xa9\xd7\x9c\xd7\x95\xd7\x9d",
+                    arabic = "\xd8\xb3\xd9\x84\xd8\xa7\xd9\x85";
+  EXPECT_EQ(html::isolated(hebrew), "<bdi>" + hebrew + "</bdi>");
+  EXPECT_EQ(html::isolated(arabic + ".csv"), "<bdi>" + arabic + ".csv</bdi>");
   EXPECT_EQ(html::isolated("run <1>"), "run &lt;1&gt;");
+  EXPECT_EQ(html::isolated("caf\xc3\xa9 \xc2\xa7"
+                           "3 \xce\xba"),
+            "caf\xc3\xa9 \xc2\xa7"
+            "3 \xce\xba");
 }
 
 TEST(SummaryHtml, LabelsWithABidiOverrideAreIsolatedInBdi) {
