@@ -215,9 +215,16 @@ struct Header {
   int first_channel_field = std::numeric_limits<int>::max();
   std::size_t field_count() const { return names.size(); }
 
+  // The header's names for a message; a header of thousands of fields is cut after a few
+  // hundred bytes, saying how many names are left out.
   std::string header_list() const {
     std::string out;
-    for (std::size_t k = 0; k < names.size(); ++k) out += (k ? ", " : "") + shown(names[k]);
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      std::string name = shown(names[k]);
+      if (k > 0 && out.size() + name.size() > 2 * text::kMaxQuotedBytes)
+        return out + ", ... (" + std::to_string(names.size() - k) + " more)";
+      out += (k ? ", " : "") + name;
+    }
     return out;
   }
 

@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 
 #include "io/report_parts.hpp"
+#include "io/svg_plot.hpp"
+#include "io/text.hpp"
 
 namespace frictionid::html {
 namespace {
@@ -72,6 +74,41 @@ std::string page_end() {
 std::string num_cell(const std::optional<double>& x) {
   if (!x || !std::isfinite(*x)) return "<td class=\"num\">" + num(x) + "</td>";
   return fmt::format("<td class=\"num\" data-value=\"{}\">{}</td>", *x, num(*x));
+}
+
+namespace {
+
+// A character that sets or changes the direction of text around it: a bidirectional control
+// (marks, embeddings, overrides, isolates), or a letter of a right-to-left script (Hebrew,
+// Arabic, Syriac, Thaana, N'Ko and their presentation forms; the historic RTL blocks above
+// U+10800 and U+1E800).
+bool directional(char32_t c) {
+  return c == 0x061c || c == 0x200e || c == 0x200f || (c >= 0x202a && c <= 0x202e) ||
+         (c >= 0x2066 && c <= 0x2069) || (c >= 0x0590 && c <= 0x08ff) ||
+         (c >= 0xfb1d && c <= 0xfdff) || (c >= 0xfe70 && c <= 0xfeff) ||
+         (c >= 0x10800 && c <= 0x10fff) || (c >= 0x1e800 && c <= 0x1efff);
+}
+
+bool has_directional(const std::string& text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto lead = static_cast<unsigned char>(text[i]);
+    if (lead < 0x80) continue;
+    const std::size_t n = text::utf8_sequence_length(text, i);
+    if (n == 0) continue;  // not UTF-8: svg::escape shows it as \xNN, which is ASCII
+    char32_t c = lead & (0xff >> (n + 1));
+    for (std::size_t k = 1; k < n; ++k)
+      c = c << 6 | (static_cast<unsigned char>(text[i + k]) & 0x3f);
+    if (directional(c)) return true;
+    i += n - 1;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::string isolated(const std::string& text) {
+  const std::string escaped = svg::escape(text);
+  return has_directional(text) ? "<bdi>" + escaped + "</bdi>" : escaped;
 }
 
 }  // namespace frictionid::html

@@ -17,4 +17,10 @@ std::string page_end();
 // for sorting and checks.
 std::string num_cell(const std::optional<double>& x);
 
+// User text inside a sentence or a list (a run label, a file name, a column's value) as HTML:
+// escaped (svg::escape), and inside <bdi> when it holds a bidirectional control (such as U+202E)
+// or a right-to-left letter, so that it cannot reorder the text around it. Other text cannot,
+// and is written as it always was.
+std::string isolated(const std::string& text);
+
 }  // namespace frictionid::html

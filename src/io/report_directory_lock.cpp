@@ -17,6 +17,7 @@
 
 #include "io/interruption.hpp"
 #include "io/report_location.hpp"
+#include "io/text.hpp"
 
 namespace frictionid {
 namespace {
@@ -73,7 +74,8 @@ ReportDirectoryLock::ReportDirectoryLock(const std::string& dir, bool wait) {
         std::fprintf(stderr,
                      "frictionid: waiting for another run writing report directory %s (lock "
                      "%s)\n",
-                     dir.c_str(), lock_path.c_str());
+                     text::for_terminal(dir).c_str(),
+                     text::for_terminal(lock_path.string()).c_str());
         said = true;
       }
       if (interrupt_flag().load()) {

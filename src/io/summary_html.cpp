@@ -21,6 +21,7 @@
 namespace frictionid {
 namespace {
 
+using html::isolated;
 using svg::escape;
 
 constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
@@ -66,7 +67,15 @@ constexpr const char* kSortScript = R"(
   };
   heads.forEach((th, col) =>
       th.addEventListener('click', () => sortBy(col, th.dataset.order !== 'up')));
-  const m = /^#sort=(-?)(.+)$/.exec(decodeURIComponent(location.hash));
+  // A malformed escape in the fragment (#sort=%E0%A4%A) makes decodeURIComponent throw: the
+  // fragment is then read as it is, and the page works without the sort it cannot name.
+  let hash = location.hash;
+  try {
+    hash = decodeURIComponent(hash);
+  } catch (e) {
+    if (!(e instanceof URIError)) throw e;
+  }
+  const m = /^#sort=(-?)(.+)$/.exec(hash);
   const col = m ? heads.findIndex((th) => th.dataset.key === m[2]) : -1;
   if (col >= 0) sortBy(col, m[1] !== '-');
 })();
@@ -114,17 +123,17 @@ std::string covariate_td(const Covariate* c) {
   if (std::holds_alternative<double>(c->value)) return number_td("", std::get<double>(c->value));
   const std::string& text = std::get<std::string>(c->value);
   const auto x = text_number(text);
-  return x ? fmt::format("<td data-value=\"{}\">{}</td>", *x, escape(text))
-           : "<td>" + escape(text) + "</td>";
+  return x ? fmt::format("<td data-value=\"{}\">{}</td>", *x, isolated(text))
+           : "<td>" + isolated(text) + "</td>";
 }
 
 std::string label_td(const SummaryRow& row, const SummaryHtmlOptions& o) {
   const auto dir = o.run_directories.find(row.label);
   if (!row.ok || o.run_reports == RunReports::None || dir == o.run_directories.end())
-    return "<td>" + escape(row.label) + "</td>";
+    return "<td>" + isolated(row.label) + "</td>";
   const char* file = o.run_reports == RunReports::Full ? "report.html" : "report.json";
   return fmt::format("<td><a href=\"runs/{}/{}\">{}</a></td>", escape(dir->second), file,
-                     escape(row.label));
+                     isolated(row.label));
 }
 
 std::string join(const std::vector<std::string>& items, const char* separator) {
@@ -169,7 +178,7 @@ void runs_section(std::string& h, const std::vector<SummaryRow>& rows,
                         row.warnings.size(), escape(join(row.warnings, "; ")), row.warnings.size());
     else
       tr += "<td class=\"num\">—</td>";
-    tr += "<td class=\"error\">" + escape(row.error) + "</td>";
+    tr += "<td class=\"error\">" + isolated(row.error) + "</td>";
     for (const auto& name : covariates) tr += covariate_td(find_covariate(row, name));
     line(h, tr + "</tr>");
   }
@@ -187,15 +196,15 @@ void problems_section(std::string& h, const std::vector<SummaryRow>& rows) {
   std::vector<std::vector<std::string>> warned_runs;
   std::size_t runs_with_warnings = 0;
   for (const auto& row : rows) {
-    if (!row.ok) failed.push_back(escape(row.label) + ": " + escape(row.error));
+    if (!row.ok) failed.push_back(isolated(row.label) + ": " + isolated(row.error));
     if (!row.warnings.empty()) ++runs_with_warnings;
     for (const auto& w : row.warnings) {
       const auto it = std::find(warnings.begin(), warnings.end(), w);
       if (it == warnings.end()) {
         warnings.push_back(w);
-        warned_runs.push_back({escape(row.label)});
+        warned_runs.push_back({isolated(row.label)});
       } else {
-        warned_runs[static_cast<std::size_t>(it - warnings.begin())].push_back(escape(row.label));
+        warned_runs[static_cast<std::size_t>(it - warnings.begin())].push_back(isolated(row.label));
       }
     }
   }
@@ -215,7 +224,7 @@ void problems_section(std::string& h, const std::vector<SummaryRow>& rows) {
                         warnings.size() <= 5 ? " open" : "", warnings.size(), runs_with_warnings,
                         rows.size()));
     for (std::size_t k = 0; k < warnings.size(); ++k)
-      line(h, fmt::format("<li>{} <em>({})</em></li>", escape(warnings[k]),
+      line(h, fmt::format("<li>{} <em>({})</em></li>", isolated(warnings[k]),
                           warned_runs[k].size() == rows.size() ? std::string("every run")
                                                                : join(warned_runs[k], ", ")));
     line(h, "</ul></details>");
@@ -269,7 +278,7 @@ Trends trend_runs(const std::vector<SummaryRow>& rows, const std::string& x) {
   std::vector<std::string> failed, missing, not_numeric;
   for (const auto& row : rows) {
     if (!row.ok) {
-      failed.push_back(escape(row.label));
+      failed.push_back(isolated(row.label));
       continue;
     }
     const Covariate* c = find_covariate(row, x);
@@ -279,16 +288,17 @@ Trends trend_runs(const std::vector<SummaryRow>& rows, const std::string& x) {
     else if (c && std::holds_alternative<std::string>(c->value) &&
              !std::get<std::string>(c->value).empty())
       not_numeric.push_back(
-          fmt::format("{} ({})", escape(row.label), escape(std::get<std::string>(c->value))));
+          fmt::format("{} ({})", isolated(row.label), isolated(std::get<std::string>(c->value))));
     else
-      missing.push_back(escape(row.label));
+      missing.push_back(isolated(row.label));
   }
   if (!failed.empty()) t.notes.push_back("Failed runs are left out: " + join(failed, ", ") + ".");
   if (!not_numeric.empty())
     t.notes.push_back(
-        fmt::format("Left out, {} is not a number: {}.", escape(x), join(not_numeric, ", ")));
+        fmt::format("Left out, {} is not a number: {}.", isolated(x), join(not_numeric, ", ")));
   if (!missing.empty())
-    t.notes.push_back(fmt::format("Left out, no value of {}: {}.", escape(x), join(missing, ", ")));
+    t.notes.push_back(
+        fmt::format("Left out, no value of {}: {}.", isolated(x), join(missing, ", ")));
 
   t.grouping = grouping_columns(t.runs, summary_covariate_names(rows), x);
   std::vector<std::string> labels;
@@ -454,7 +464,7 @@ std::string summary_html(const std::vector<SummaryRow>& rows, const SummaryHtmlO
   std::size_t failed = 0;
   for (const auto& row : rows)
     if (!row.ok) ++failed;
-  std::string h = html::page_start(o.title);
+  std::string h = html::page_start(escape(o.title));
   line(h, std::string("<style>") + kStyle + "</style>");
   line(h, "<h1>" + escape(o.title) + "</h1>");
   if (!o.note.empty()) line(h, "<p id=\"note\">" + escape(o.note) + "</p>");

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <frictionid/parameters.hpp>
+#include "io/csv_cell.hpp"
 #include "io/json_number.hpp"
 #include "io/summary_columns.hpp"
 
@@ -27,14 +28,6 @@ std::string number_cell(const std::optional<double>& x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", *x);
   return buf;
-}
-
-// RFC 4180 quoting, only where a cell needs it.
-std::string text_cell(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
 }
 
 std::optional<double> optional_number(const ojson& j, const char* key) {
@@ -232,7 +225,7 @@ std::string summary_csv(const std::vector<SummaryRow>& rows) {
 
   std::string out;
   auto write_line = [&out](const std::vector<std::string>& cells) {
-    for (std::size_t i = 0; i < cells.size(); ++i) out += (i ? "," : "") + text_cell(cells[i]);
+    for (std::size_t i = 0; i < cells.size(); ++i) out += (i ? "," : "") + csv_cell(cells[i]);
     out += "\n";
   };
   write_line(header);

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "io/text.hpp"
+
 namespace frictionid::svg {
 namespace {
 
@@ -243,7 +245,17 @@ void append_legend(std::string& o, const Plot& p, const std::vector<LegendItem>&
 std::string escape(const std::string& s) {
   std::string out;
   out.reserve(s.size());
-  for (char c : s) {
+  // A byte that XML 1.0 does not allow in a document, or that is not UTF-8, is shown as the
+  // text \xNN, as in terminal messages: one such byte in a label would make a standalone .svg
+  // ill-formed, and a browser then draws none of it.
+  const auto show_byte = [&out](char c) {
+    static constexpr char kHex[] = "0123456789abcdef";
+    const auto u = static_cast<unsigned char>(c);
+    out += {'\\', 'x', kHex[u >> 4], kHex[u & 15]};
+  };
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const char c = s[i];
+    const auto u = static_cast<unsigned char>(c);
     switch (c) {
       case '&':
         out += "&amp;";
@@ -258,7 +270,24 @@ std::string escape(const std::string& s) {
         out += "&quot;";
         break;
       default:
-        out += c;
+        if (u >= 0x80) {
+          const std::size_t n = text::utf8_sequence_length(s, i);
+          // C1 controls (U+0080 to U+009F) and the non-characters U+FFFE and U+FFFF are
+          // escaped too: XML forbids the latter, HTML counts both as errors.
+          const bool c1 = n == 2 && u == 0xc2 && static_cast<unsigned char>(s[i + 1]) < 0xa0;
+          const bool nonchar = n == 3 && s.compare(i, 2, "\xef\xbf") == 0 &&
+                               static_cast<unsigned char>(s[i + 2]) >= 0xbe;
+          if (n == 0 || c1 || nonchar) {
+            for (std::size_t k = 0; k < std::max<std::size_t>(n, 1); ++k) show_byte(s[i + k]);
+          } else {
+            out.append(s, i, n);
+          }
+          i += std::max<std::size_t>(n, 1) - 1;
+        } else if ((u < 0x20 && c != '\t' && c != '\n' && c != '\r') || u == 0x7f) {
+          show_byte(c);
+        } else {
+          out += c;
+        }
     }
   }
   return out;

@@ -49,7 +49,9 @@ std::vector<double> linear_ticks(double lo, double hi, int target = 6);
 std::vector<double> log_ticks(double lo, double hi);
 // A tick label: up to 4 significant digits, no trailing zeros ("0.01", "250", "1e+06").
 std::string tick_label(double v);
-// Text escaped for XML and HTML content and attribute values.
+// Text escaped for XML and HTML content and attribute values; whatever the bytes, the result is
+// well-formed XML text: a control character other than tab, LF and CR, DEL, a C1 control, the
+// non-characters U+FFFE and U+FFFF and every byte that is not UTF-8 are shown as the text \xNN.
 std::string escape(const std::string& s);
 
 }  // namespace frictionid::svg

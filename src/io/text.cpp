@@ -16,18 +16,85 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
+namespace {
+
+constexpr char kHex[] = "0123456789abcdef";
+
+bool printable(unsigned char u) {
+  return (u >= 0x20 && u < 0x7f) || u == '\t';
+}
+
+void append_escaped(std::string& out, unsigned char u) {
+  if (printable(u))
+    out += static_cast<char>(u);
+  else
+    out += {'\\', 'x', kHex[u >> 4], kHex[u & 15]};
+}
+
+std::size_t escaped_size(unsigned char u) {
+  return printable(u) ? 1 : 4;
+}
+
+}  // namespace
+
 std::string shown(std::string_view text, std::size_t max_bytes) {
+  max_bytes = std::min(max_bytes, kMaxQuotedBytes);
   std::string out = "'";
-  for (const char c : text.substr(0, max_bytes)) {
-    const auto u = static_cast<unsigned char>(c);
-    if ((u < 0x20 && c != '\t') || u >= 0x7f) {
-      static constexpr char kHex[] = "0123456789abcdef";
-      out += {'\\', 'x', kHex[u >> 4], kHex[u & 15]};
-    } else {
-      out += c;
-    }
-  }
+  for (const char c : text.substr(0, max_bytes)) append_escaped(out, static_cast<unsigned char>(c));
   return out + (text.size() > max_bytes ? "...'" : "'");
+}
+
+std::string escaped(std::string_view s) {
+  std::string out;
+  out.reserve(s.size());
+  for (const char c : s) append_escaped(out, static_cast<unsigned char>(c));
+  return out;
+}
+
+std::string for_terminal(std::string_view message, std::size_t max_bytes) {
+  std::size_t total = 0;
+  for (const char c : message) total += escaped_size(static_cast<unsigned char>(c));
+  if (total <= max_bytes) return escaped(message);
+  // The start says what is wrong, the end often how to fix it: keep both, whole escapes only.
+  const std::size_t tail_budget = max_bytes / 4, head_budget = max_bytes - tail_budget;
+  std::size_t head = 0, used = 0;
+  while (used + escaped_size(static_cast<unsigned char>(message[head])) <= head_budget)
+    used += escaped_size(static_cast<unsigned char>(message[head++]));
+  std::size_t tail = message.size();
+  used = 0;
+  while (tail > head &&
+         used + escaped_size(static_cast<unsigned char>(message[tail - 1])) <= tail_budget)
+    used += escaped_size(static_cast<unsigned char>(message[--tail]));
+  return escaped(message.substr(0, head)) + " ... [" + std::to_string(tail - head) +
+         " bytes left out] ... " + escaped(message.substr(tail));
+}
+
+std::size_t utf8_sequence_length(std::string_view s, std::size_t i) {
+  const auto byte = [&](std::size_t k) {
+    return i + k < s.size() ? static_cast<unsigned char>(s[i + k]) : 0u;
+  };
+  const unsigned lead = byte(0);
+  // The ranges of the second byte follow the table of well-formed sequences in the Unicode
+  // standard (3.9, table 3-7): they exclude overlong forms, surrogates and values > U+10FFFF.
+  std::size_t length = 0;
+  unsigned lo = 0x80, hi = 0xbf;
+  if (lead >= 0xc2 && lead <= 0xdf) {
+    length = 2;
+  } else if (lead >= 0xe0 && lead <= 0xef) {
+    length = 3;
+    if (lead == 0xe0) lo = 0xa0;
+    if (lead == 0xed) hi = 0x9f;
+  } else if (lead >= 0xf0 && lead <= 0xf4) {
+    length = 4;
+    if (lead == 0xf0) lo = 0x90;
+    if (lead == 0xf4) hi = 0x8f;
+  } else {
+    return 0;
+  }
+  if (byte(1) < lo || byte(1) > hi) return 0;
+  for (std::size_t k = 2; k < length; ++k)
+    if (byte(k) < 0x80 || byte(k) > 0xbf) return 0;
+  return length;
 }
 
 namespace {

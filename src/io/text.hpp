@@ -1,5 +1,6 @@
 // Text helpers shared by the CSV and table readers and the option parsers: one strict number
-// grammar, trimming, quoting for messages, and the edit distance behind "did you mean".
+// grammar, trimming, quoting and escaping for messages, and the edit distance behind "did you
+// mean".
 #pragma once
 
 #include <cstddef>
@@ -17,11 +18,34 @@ inline bool is_space(char c) {
 // s without leading and trailing spaces and tabs.
 std::string_view trim(std::string_view s);
 
-// The text in single quotes for a message, cut after max_bytes (then "..." before the closing
-// quote); every byte that is not printable ASCII (a CR, a NUL, a byte of a UTF-8 sequence such
-// as a zero-width space) except tab is shown as \xNN, so that a huge, binary or oddly encoded
-// line still gives one readable line that shows what is there.
+// A message quotes at most this many bytes of the content it complains about: a 40 MB line
+// gives a message of a few hundred bytes, not one of 40 MB.
+inline constexpr std::size_t kMaxQuotedBytes = 200;
+// A whole message (escaped) is cut to about this many bytes by for_terminal.
+inline constexpr std::size_t kMaxMessageBytes = 1024;
+
+// The text in single quotes for a message, cut after max_bytes, and never after more than
+// kMaxQuotedBytes (then "..." before the closing quote); every byte that is not printable ASCII
+// is escaped as in escaped(), so that a huge, binary or oddly encoded line still gives one
+// readable line that shows what is there.
 std::string shown(std::string_view text, std::size_t max_bytes = 60);
+
+// s with every byte that is not printable ASCII or tab shown as \xNN: control characters (ESC,
+// BEL, CR, LF, NUL), DEL, and every byte of a non-ASCII character, which covers bidirectional
+// controls such as U+202E and bytes that are not UTF-8. Such bytes in a path or label would
+// otherwise reach the user's terminal, which acts on them (retitles, clears, reorders text).
+// The result is printable ASCII and tab only, so escaping it again changes nothing.
+std::string escaped(std::string_view s);
+
+// A message as it may be shown on a terminal or in an exception's text: escaped(), on one line,
+// and when that is longer than max_bytes, its start and its end with the middle left out and
+// the number of bytes left out said in between.
+std::string for_terminal(std::string_view message, std::size_t max_bytes = kMaxMessageBytes);
+
+// The length (2 to 4) of the well-formed UTF-8 sequence of one character that starts at
+// s[i], a byte of 0x80 or more; 0 when the bytes there are not UTF-8 (a Latin-1 byte, a stray
+// continuation byte, a cut, overlong or surrogate sequence, a value above U+10FFFF).
+std::size_t utf8_sequence_length(std::string_view s, std::size_t i);
 
 // One strict decimal number: optional leading '+' or '-', decimal digits with optional fraction
 // and exponent (what std::from_chars accepts in chars_format::general); the whole text must be
