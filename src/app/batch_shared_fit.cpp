@@ -12,6 +12,7 @@
 #include "app/option_parsers.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json_number.hpp"
+#include "io/text.hpp"
 
 namespace frictionid::app {
 namespace {
@@ -141,7 +142,7 @@ void write_shared_fit(const std::vector<BatchRun>& runs, const std::vector<Summa
     std::printf(" %s = %.10g", e.name.c_str(), e.value);
     if (e.std_error) std::printf(" +- %.3g", *e.std_error);
   }
-  std::printf("; %s/shared.csv\n", dir.c_str());
+  std::printf("; %s/shared.csv\n", text::for_terminal(dir).c_str());
 }
 
 }  // namespace frictionid::app

@@ -9,23 +9,9 @@
 #include <frictionid/io/dataset_writer.hpp>
 #include <frictionid/io/input_error.hpp>
 #include "io/atomic_file.hpp"
+#include "io/csv_cell.hpp"
 
 namespace frictionid::app {
-
-namespace {
-
-// A CSV field as written: quoted when it holds a comma, a quote or surrounding spaces.
-std::string csv_field(const std::string& s) {
-  const bool quote = s.find_first_of(",\"\r\n") != std::string::npos ||
-                     (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.back() == ' ' ||
-                                     s.back() == '\t'));
-  if (!quote) return s;
-  std::string out = "\"";
-  for (char ch : s) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return out + "\"";
-}
-
-}  // namespace
 
 nlohmann::ordered_json evaluate_point(const EvalRequest& r) {
   const ModelSetup s = make_model_setup(r.model);
@@ -58,7 +44,7 @@ std::size_t evaluate_file(const EvalRequest& r) {
   std::string text = dataset_csv_text(d);
   const std::size_t header_end = text.find('\n');
   std::string header = text.substr(0, header_end);
-  for (const auto& name : d.extra_names) header += "," + csv_field(name);
+  for (const auto& name : d.extra_names) header += "," + csv_cell(name);
   for (const char* name : {"T_x", "T_y", "M_z", "M_roll", "N"}) {
     const bool taken =
         (name == std::string("N")) ||
@@ -71,7 +57,7 @@ std::size_t evaluate_file(const EvalRequest& r) {
     const std::size_t eol = text.find('\n', pos);
     out.append(text, pos, eol - pos);
     pos = eol + 1;
-    for (const auto& column : d.extra_values) (out += ',') += csv_field(column[i]);
+    for (const auto& column : d.extra_values) (out += ',') += csv_cell(column[i]);
     const auto p = eval(model::Kinematics{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]});
     fmt::format_to(std::back_inserter(out), ",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", p.T_x,
                    p.T_y, p.M_z, p.M_roll, p.N);

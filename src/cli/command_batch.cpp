@@ -32,6 +32,7 @@
 #include "identify/thread_budget.hpp"
 #include "io/atomic_file.hpp"
 #include "io/report_directory_lock.hpp"
+#include "io/text.hpp"
 
 namespace frictionid::cli {
 
@@ -242,7 +243,7 @@ int run_batch(const BatchRequest& o) {
     std::fprintf(stderr,
                  "frictionid: interrupted after %zu of %zu runs; they are in %s/journal.jsonl, "
                  "run the same command again to fit the rest\n",
-                 fitted + from_journal, runs.size(), o.fit.report.c_str());
+                 fitted + from_journal, runs.size(), text::for_terminal(o.fit.report).c_str());
     return kExitInterrupted;
   }
 
@@ -251,8 +252,8 @@ int run_batch(const BatchRequest& o) {
   for (auto& row : rows) {
     if (!row->ok) {
       ++failed_total;
-      std::fprintf(stderr, "frictionid: run '%s' failed: %s\n", row->label.c_str(),
-                   row->error.c_str());
+      std::fprintf(stderr, "frictionid: run '%s' failed: %s\n",
+                   text::for_terminal(row->label).c_str(), text::for_terminal(row->error).c_str());
     }
     table.push_back(std::move(*row));
   }
@@ -271,11 +272,12 @@ int run_batch(const BatchRequest& o) {
       "batch: %zu runs: %zu fitted, %zu from the journal, %zu failed; %.2f s, %zu at once\n",
       runs.size(), fitted, from_journal, failed_total,
       seconds(std::chrono::steady_clock::now() - t_start).count(), jobs);
-  std::printf("summary: %s/summary.csv, %s/summary.html\n", o.fit.report.c_str(),
-              o.fit.report.c_str());
+  const std::string report = text::for_terminal(o.fit.report);
+  std::printf("summary: %s/summary.csv, %s/summary.html\n", report.c_str(), report.c_str());
   if (!shared.empty()) {
     std::string shared_text;
     for (const auto& name : shared) shared_text += (shared_text.empty() ? "" : ",") + name;
+    shared_text = text::for_terminal(shared_text);
     // The joint fit refits every run alone first: on a terminal, say so before the wait.
     if (progress)
       std::fprintf(stderr, "frictionid batch: joint fit (--shared %s) of the %zu fitted runs...\n",
@@ -286,7 +288,7 @@ int run_batch(const BatchRequest& o) {
     } catch (const FitError& e) {
       if (interrupted->load()) return kExitInterrupted;
       std::fprintf(stderr, "frictionid: the joint fit (--shared %s) failed: %s\n",
-                   shared_text.c_str(), e.what());
+                   shared_text.c_str(), text::for_terminal(e.what()).c_str());
       return kExitFitFailed;
     }
   }

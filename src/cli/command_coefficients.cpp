@@ -6,6 +6,7 @@
 #include "app/law_coefficients.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "io/text.hpp"
 
 namespace frictionid::cli {
 
@@ -19,7 +20,7 @@ int run_coefficients(const app::CoefficientsRequest& r, const std::string& forma
   const auto& ok = j["consistency"];
   const auto holds = [&ok](const char* key) { return ok[key].get<bool>(); };
   std::printf("pressure law   %s   (kappa = %.6g, alpha = %.6g rad)\n",
-              j["pressure"].get<std::string>().c_str(), r.kappa, r.alpha);
+              text::for_terminal(j["pressure"].get<std::string>()).c_str(), r.kappa, r.alpha);
   std::printf("moments        m0 = %.10g  m1 = %.10g  m2 = %.10g  m3 = %.10g\n", v("m0"), v("m1"),
               v("m2"), v("m3"));
   std::printf("a       %-16.10g small-v slope of T_par          (a <= 4: %s)\n", v("a"),

@@ -14,6 +14,7 @@
 #include "identify/thread_budget.hpp"
 #include "io/report_directory_lock.hpp"
 #include "io/report_transaction.hpp"
+#include "io/text.hpp"
 
 namespace frictionid::cli {
 
@@ -38,7 +39,8 @@ int run_compare(const app::CompareRequest& o) {
     TerminalObserver observer(interrupted, show_progress(o.fit.progress));
     c = compare_models(data, settings, &observer);
   } catch (const FitError& e) {
-    std::fprintf(stderr, "frictionid: compare failed: %s; no report written\n", e.what());
+    std::fprintf(stderr, "frictionid: compare failed: %s; no report written\n",
+                 text::for_terminal(e.what()).c_str());
     return interrupted->load() ? kExitInterrupted : kExitFitFailed;
   } catch (const std::invalid_argument& e) {
     throw InputError(o.fit.data, 0, 0, e.what());
@@ -50,8 +52,10 @@ int run_compare(const app::CompareRequest& o) {
                 c.fits[k].aic, c.delta_aic[k]);
   std::printf("preferred by AIC: %s, by BIC: %s\n", c.preferred_by_aic.c_str(),
               c.preferred_by_bic.c_str());
-  for (const auto& n : coefficient_notes(c)) std::printf("note: %s\n", n.c_str());
-  std::printf("report: %s/compare.md (%zu files)\n", o.fit.report.c_str(), files.size());
+  for (const auto& n : coefficient_notes(c))
+    std::printf("note: %s\n", text::for_terminal(n).c_str());
+  std::printf("report: %s/compare.md (%zu files)\n", text::for_terminal(o.fit.report).c_str(),
+              files.size());
   return kExitOk;
 }
 

@@ -5,13 +5,15 @@
 #include "app/evaluation.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "io/text.hpp"
 
 namespace frictionid::cli {
 
 int run_eval(const app::EvalRequest& r) {
   if (!r.input.empty()) {
     const std::size_t rows = app::evaluate_file(r);
-    std::cerr << "frictionid: wrote " << rows << " rows to " << r.output << "\n";
+    std::cerr << "frictionid: wrote " << rows << " rows to " << text::for_terminal(r.output)
+              << "\n";
     return kExitOk;
   }
   std::cout << app::evaluate_point(r).dump(2) << "\n";

@@ -17,6 +17,7 @@
 #include "identify/thread_budget.hpp"
 #include "io/report_directory_lock.hpp"
 #include "io/report_transaction.hpp"
+#include "io/text.hpp"
 
 namespace frictionid::cli {
 
@@ -51,8 +52,12 @@ int run_fit(const app::FitRequest& o) {
   } catch (const FitError& e) {
     std::error_code ec;
     const bool stale = std::filesystem::exists(std::filesystem::path(o.report) / "report.json", ec);
-    std::fprintf(stderr, "frictionid: fit failed: %s; no report written%s\n", e.what(),
-                 stale ? (" (" + o.report + "/report.json is from an earlier run)").c_str() : "");
+    std::fprintf(
+        stderr, "frictionid: fit failed: %s; no report written%s\n",
+        text::for_terminal(e.what()).c_str(),
+        stale
+            ? (" (" + text::for_terminal(o.report) + "/report.json is from an earlier run)").c_str()
+            : "");
     return interrupted->load() ? kExitInterrupted : kExitFitFailed;
   }
   if (interrupted->load()) {
@@ -63,8 +68,8 @@ int run_fit(const app::FitRequest& o) {
   const auto files = write_report(o.report, r, data, report_options);
   const double write_s = seconds(std::chrono::steady_clock::now() - t_write).count();
 
-  std::printf("model %s, pressure %s, %zu rows, channels", r.model.c_str(), r.pressure.c_str(),
-              r.rows);
+  std::printf("model %s, pressure %s, %zu rows, channels", r.model.c_str(),
+              text::for_terminal(r.pressure).c_str(), r.rows);
   for (Channel c : r.channels) std::printf(" %s", channel_name(c));
   std::printf("\n");
   for (const auto& p : r.parameters) {
@@ -83,8 +88,9 @@ int run_fit(const app::FitRequest& o) {
       "time: reading %.3f s, global stage %.3f s, local fits %.3f s, statistics and predictions "
       "%.3f s, report %.3f s\n",
       read_s, r.solver.global_time_s, r.solver.local_time_s, r.solver.statistics_time_s, write_s);
-  for (const auto& w : r.warnings) std::printf("warning: %s\n", w.c_str());
-  std::printf("report: %s/report.html (%zu files)\n", o.report.c_str(), files.size());
+  for (const auto& w : r.warnings) std::printf("warning: %s\n", text::for_terminal(w).c_str());
+  std::printf("report: %s/report.html (%zu files)\n", text::for_terminal(o.report).c_str(),
+              files.size());
   return kExitOk;
 }
 

@@ -4,14 +4,15 @@
 #include "app/generation.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
+#include "io/text.hpp"
 
 namespace frictionid::cli {
 
 int run_generate(const app::GenerateRequest& r) {
   const app::GeneratedData g = app::generate(r);
   app::write_generated(r, g);
-  std::cerr << "frictionid: wrote " << g.data.rows() << " rows to " << r.output
-            << (r.truth.empty() ? "" : " and the truth to " + r.truth) << "\n";
+  std::cerr << "frictionid: wrote " << g.data.rows() << " rows to " << text::for_terminal(r.output)
+            << (r.truth.empty() ? "" : " and the truth to " + text::for_terminal(r.truth)) << "\n";
   return kExitOk;
 }
 

@@ -19,6 +19,7 @@
 #include "cli/exit_codes.hpp"
 #include "io/huge_pages.hpp"
 #include "io/interruption.hpp"
+#include "io/text.hpp"
 
 namespace {
 
@@ -308,7 +309,7 @@ int main(int argc, char** argv) {
       const std::string after = i > 1 ? std::string(" after ") + argv[i - 1] : std::string();
       std::fprintf(stderr,
                    "frictionid: error: empty argument %d%s; expected a value (see --help)\n", i,
-                   (empty_inline ? " (" + arg + ")" : after).c_str());
+                   frictionid::text::for_terminal(empty_inline ? " (" + arg + ")" : after).c_str());
       return kExitBadInput;
     }
   }
@@ -322,7 +323,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "frictionid: error: %s (see --help)\n", e.what());
+    std::fprintf(stderr, "frictionid: error: %s (see --help)\n",
+                 frictionid::text::for_terminal(e.what()).c_str());
     return kExitBadInput;
   }
 
@@ -360,13 +362,16 @@ int main(int argc, char** argv) {
       return run_batch(batch);
     }
   } catch (const frictionid::Interrupted& e) {
-    std::fprintf(stderr, "frictionid: %s; the earlier report (if any) is unchanged\n", e.what());
+    std::fprintf(stderr, "frictionid: %s; the earlier report (if any) is unchanged\n",
+                 frictionid::text::for_terminal(e.what()).c_str());
     return kExitInterrupted;
   } catch (const frictionid::InputError& e) {
-    std::fprintf(stderr, "frictionid: error: %s\n", e.what());
+    std::fprintf(stderr, "frictionid: error: %s\n",
+                 frictionid::text::for_terminal(e.what()).c_str());
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "frictionid: error: %s\n", e.what());
+    std::fprintf(stderr, "frictionid: error: %s\n",
+                 frictionid::text::for_terminal(e.what()).c_str());
     return kExitFailure;
   }
   return kExitFailure;

@@ -166,7 +166,8 @@ void warn_closed_form_coefficients(const LocalProblem& lp, const ParamVector& x,
         number_text(v) + " that the " + s.law_label + " pressure implies by " +
         number_text(std::fabs(x[i] - v) / *e->std_error) +
         " standard errors: the closed forms are approximations (errors of tens of percent "
-        "near eps = 1, docs/physics.md §3), so fitted coefficients need not equal the matched "
+        "near eps = 1, docs/physics.md section 3), so fitted coefficients need not equal the "
+        "matched "
         "ones");
   }
 }

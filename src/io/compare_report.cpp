@@ -58,7 +58,8 @@ std::vector<std::string> coefficient_notes(const ModelComparison& c) {
         notes.push_back(fmt::format(
             "{}: fitted {} = {} differs by {:+.0f}% from {} implied by the exact fit's pressure "
             "shape: the closed form's eps-shape is not the integral model's (errors of tens of "
-            "percent near eps = 1, docs/physics.md §3), so {} absorbs that shape error instead of "
+            "percent near eps = 1, docs/physics.md section 3), so {} absorbs that shape error "
+            "instead of "
             "measuring the pressure distribution; read it as a curve-fit constant.",
             f.model, name, g6(p->value), 100 * rel, g6(implied), name));
       }

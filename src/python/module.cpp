@@ -5,6 +5,7 @@
 
 #include <frictionid/fit_error.hpp>
 #include <frictionid/io/input_error.hpp>
+#include "io/text.hpp"
 #include "python/bindings.hpp"
 
 namespace py = pybind11;
@@ -19,7 +20,7 @@ PYBIND11_MODULE(_frictionid, m) {
     } catch (const frictionid::InputError& e) {
       input_error(e.what());
     } catch (const frictionid::FitError& e) {
-      fit_error(e.what());
+      fit_error(frictionid::text::for_terminal(e.what()).c_str());
     }
   });
   frictionid::python::register_fit(m);
