@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 namespace frictionid {
@@ -28,9 +29,10 @@ int write_all(int fd, const std::string& content) {
   return 0;
 }
 
-// A FIFO, device or pseudo-file: opened and written in place, as a shell redirection would.
+// A FIFO, device or pseudo-file: opened and written in place, as a shell redirection would, and
+// appended to: whatever such a target already holds is never truncated or overwritten.
 void write_through(const std::string& path, const std::string& content) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
   if (fd < 0)
     throw std::runtime_error("cannot write " + path +
                              " (not a regular file, written in place): " + std::strerror(errno));
@@ -40,6 +42,48 @@ void write_through(const std::string& path, const std::string& content) {
   }
   if (::close(fd) != 0)
     throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+}
+
+// The descriptor this process already has open that `name` stands for: /dev/stdout, /dev/stderr,
+// /dev/fd/N, /proc/self/fd/N, /proc/thread-self/fd/N or /proc/<this pid>/fd/N. Opening such a
+// name opens the file again, at offset 0 and without the shell's O_APPEND (`>> log` would be
+// overwritten from its start); writing to the descriptor itself appends where the shell left it.
+std::optional<int> own_descriptor_name(const std::string& name) {
+  if (name == "/dev/stdout") return 1;
+  if (name == "/dev/stderr") return 2;
+  const std::string own = "/proc/" + std::to_string(::getpid()) + "/fd/";
+  for (const std::string& prefix : {std::string("/dev/fd/"), std::string("/proc/self/fd/"),
+                                    std::string("/proc/thread-self/fd/"), own})
+    if (name.size() > prefix.size() && name.compare(0, prefix.size(), prefix) == 0) {
+      const std::string digits = name.substr(prefix.size());
+      if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
+        return std::nullopt;
+      return std::stoi(digits);
+    }
+  return std::nullopt;
+}
+
+// The descriptor `path` reaches, itself or through a chain of symbolic links (followed by name,
+// without opening anything), or nullopt.
+std::optional<int> own_descriptor(const std::string& path) {
+  std::string hop = path;
+  for (int hops = 0; hops < 40; ++hops) {
+    if (const auto fd = own_descriptor_name(hop)) return fd;
+    struct stat sb;
+    if (::lstat(hop.c_str(), &sb) != 0 || !S_ISLNK(sb.st_mode)) return std::nullopt;
+    std::error_code ec;
+    const fs::path next = fs::read_symlink(hop, ec);
+    if (ec) return std::nullopt;
+    hop = next.is_absolute() ? next.string() : (fs::path(hop).parent_path() / next).string();
+  }
+  return std::nullopt;
+}
+
+// Content written to a descriptor the process inherited, at its current offset, as a shell
+// redirection would write it; the descriptor stays open.
+void write_to_descriptor(const std::string& path, int fd, const std::string& content) {
+  if (const int err = write_all(fd, content))
+    throw std::runtime_error("cannot write " + path + " (write): " + std::strerror(err));
 }
 
 // /dev/stdout, /proc/self/fd/1 and the like; /dev/shm is an ordinary (memory) file system.
@@ -53,6 +97,7 @@ void replace_regular_file(const std::string& path, const std::string& content, F
 }  // namespace
 
 void write_file_atomically(const std::string& path, const std::string& content, Flush flush) {
+  if (const auto fd = own_descriptor(path)) return write_to_descriptor(path, *fd, content);
   struct stat link_sb, sb;
   const bool exists = ::lstat(path.c_str(), &link_sb) == 0;
   const bool followed = ::stat(path.c_str(), &sb) == 0;

@@ -1,10 +1,12 @@
 // Writes a whole file or nothing: content goes to a temporary file in the same directory, is
 // flushed, then renamed over the target, so a crash or an error never leaves a half-written file.
 //
-// Outputs that are not regular files are never replaced
-// by a regular one: a FIFO, a device, a socket or anything under /dev (but /dev/shm) or /proc (e.g.
-// /dev/stdout, or /dev/fd/63 from the shell's `>(cmd)`) is written through, without atomicity; a
-// symlink stays a symlink and its target is replaced atomically instead.
+// Outputs that are not regular files are never replaced by a regular one: a FIFO, a device, a
+// socket or anything under /dev (but /dev/shm) or /proc is written through, appended to, without
+// atomicity. A name of a descriptor the process already has (/dev/stdout, /dev/fd/63 from the
+// shell's `>(cmd)`, /proc/self/fd/1, or a symlink to one) is written to that descriptor at its
+// offset, as a shell redirection writes: `--output /dev/stdout >> log` appends to log. A symlink
+// stays a symlink and its target is replaced atomically instead.
 #pragma once
 
 #include <string>

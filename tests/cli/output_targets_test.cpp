@@ -65,6 +65,35 @@ TEST_F(OutputTargets, DevStdoutIsWrittenInPlace) {
   EXPECT_EQ(read_file(dir_ / "got.csv").rfind("v_x,", 0), 0u);
 }
 
+TEST_F(OutputTargets, DevStdoutUnderAnAppendingRedirectionKeepsWhatTheFileHeld) {
+  ASSERT_EQ(bash("printf \"precious\\n\" > log.txt; " + generate("/dev/stdout") + " >> log.txt"), 0)
+      << read_file(dir_ / "err");
+  const std::string log = read_file(dir_ / "log.txt");
+  EXPECT_EQ(log.rfind("precious\nv_x,", 0), 0u) << log;
+  EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 9);
+}
+
+TEST_F(OutputTargets, TwoRunsAppendingToDevStdoutLeaveBothOutputs) {
+  ASSERT_EQ(
+      bash(generate("/dev/stdout") + " >> log.txt; " + generate("/dev/stdout") + " >> log.txt"), 0)
+      << read_file(dir_ / "err");
+  const std::string log = read_file(dir_ / "log.txt");
+  EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 16) << log;
+}
+
+TEST_F(OutputTargets, ASymlinkToProcSelfFdOneWritesToTheCapturedStdoutItself) {
+  // The group's stdout is one open file: replacing got.csv by name would leave the group
+  // writing "after" into a deleted file, and a reader of the descriptor with nothing.
+  ASSERT_EQ(bash("ln -s /proc/self/fd/1 link; { " + generate("link") + "; echo after; } > got.csv"),
+            0)
+      << read_file(dir_ / "err");
+  const std::string got = read_file(dir_ / "got.csv");
+  EXPECT_EQ(got.rfind("v_x,", 0), 0u) << got;
+  EXPECT_EQ(std::count(got.begin(), got.end(), '\n'), 9) << got;
+  EXPECT_NE(got.find("\nafter\n"), std::string::npos) << got;
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir_ / "link")));
+}
+
 TEST_F(OutputTargets, ASymlinkKeepsItsLinkAndItsTargetGetsTheRows) {
   ASSERT_EQ(bash("echo old > target.csv; ln -s target.csv link.csv; " + generate("link.csv")), 0)
       << read_file(dir_ / "err");
