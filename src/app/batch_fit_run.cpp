@@ -2,6 +2,7 @@
 
 #include <exception>
 #include <optional>
+#include <stdexcept>
 
 #include <frictionid/fitter.hpp>
 #include <frictionid/io/dataset_csv.hpp>
@@ -10,14 +11,36 @@
 
 namespace frictionid::app {
 
+namespace {
+
+// Reads the run's file, and in `read` the fingerprint of the bytes read: the planned one while the
+// file's size and time are those of the plan, else a new hash. A file that changes while it is
+// read is an error (the run is fitted again next time).
+Dataset read_run_file(const BatchRun& run, FileFingerprint* read) {
+  if (!read) return load_dataset_csv(run.path, run.options.columns);
+  const FileFingerprint before = stat_file(run.path);
+  const bool as_planned = before.size == run.input.size && before.mtime_ns == run.input.mtime_ns &&
+                          !run.input.sha256.empty();
+  *read = as_planned ? run.input : fingerprint_file(run.path);
+  Dataset data = load_dataset_csv(run.path, run.options.columns);
+  const FileFingerprint after = stat_file(run.path);
+  if (after.size != before.size || after.mtime_ns != before.mtime_ns ||
+      (!as_planned && after.size != read->size))
+    throw std::runtime_error(run.path + ": the file changed while it was read");
+  return data;
+}
+
+}  // namespace
+
 SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer,
-                         const RunFitted& on_fitted, const WarmStart* warm) {
+                         const RunFitted& on_fitted, const WarmStart* warm, FileFingerprint* read) {
   Dataset data;
   try {
     if (run.file_data) {
       data = select_rows(*run.file_data, run.group_rows);
+      if (read) *read = run.input;  // the bytes read when the batch was planned
     } else {
-      data = load_dataset_csv(run.path, run.options.columns);
+      data = read_run_file(run, read);
       if (!run.group_rows.empty()) data = select_rows(data, run.group_rows);
     }
   } catch (const std::exception& e) {

@@ -23,7 +23,9 @@ using RunFitted = std::function<void(const FitResult&, const Dataset&)>;
 // run's options on `threads` threads. A failure of any kind (unreadable file, bad data, failed fit)
 // is a failed row carrying the message, never an exception. With `warm`, the fit starts from it
 // and falls back to the full search when the warm fit fails its check (batch_warm_start.hpp).
+// With `read`, the fingerprint of the bytes the fit read goes there (for the batch journal).
 SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer,
-                         const RunFitted& on_fitted = {}, const WarmStart* warm = nullptr);
+                         const RunFitted& on_fitted = {}, const WarmStart* warm = nullptr,
+                         FileFingerprint* read = nullptr);
 
 }  // namespace frictionid::app

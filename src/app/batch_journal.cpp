@@ -29,7 +29,11 @@ BatchJournal::BatchJournal(const std::string& path, bool fresh) : path_(path) {
         const auto key = std::stoull(j.at("key").get<std::string>(), nullptr, 16);
         SummaryRow row = summary_row_from_json(j.at("row"));
         const std::string label = row.label;
-        entries_.insert_or_assign(label, Entry{key, std::move(row)});
+        const auto input = j.find("input");
+        std::string sha256 = input != j.end() && input->contains("sha256")
+                                 ? input->at("sha256").get<std::string>()
+                                 : std::string();
+        entries_.insert_or_assign(label, Entry{key, std::move(row), std::move(sha256)});
       } catch (const std::exception&) {
         // A line cut short by a kill, or not ours: that run is simply fitted again.
       }
@@ -48,16 +52,23 @@ BatchJournal::~BatchJournal() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-const SummaryRow* BatchJournal::finished(const std::string& label, std::uint64_t key) const {
+const SummaryRow* BatchJournal::finished(const std::string& label, std::uint64_t key,
+                                         const FileFingerprint& input, bool* changed) const {
+  if (changed) *changed = false;
   const auto it = entries_.find(label);
   if (it == entries_.end() || it->second.key != key || !it->second.row.ok) return nullptr;
+  if (it->second.sha256 != input.sha256) {
+    if (changed) *changed = true;
+    return nullptr;
+  }
   return &it->second.row;
 }
 
-void BatchJournal::record(std::uint64_t key, const SummaryRow& row) {
+void BatchJournal::record(std::uint64_t key, const SummaryRow& row, const FileFingerprint& read) {
   nlohmann::ordered_json j;
   j["label"] = row.label;
   j["key"] = hex_key(key);
+  j["input"] = {{"size", read.size}, {"mtime_ns", read.mtime_ns}, {"sha256", read.sha256}};
   j["row"] = summary_row_json(row);
   // One write of a whole line: with O_APPEND, lines of concurrent writers never interleave.
   const std::string line =

@@ -1,5 +1,6 @@
 // The journal of `frictionid batch`: DIR/journal.jsonl, one JSON line per finished run (its
-// label, the hash of its inputs and options, and its summary row), appended as each run ends. A
+// label, the hash of its inputs and options, the size, time and SHA-256 of the bytes its fit read,
+// and its summary row), appended as each run ends. A
 // rerun takes finished runs from it instead of fitting them again, so a killed batch loses at
 // most the runs that were in flight; a torn last line (killed mid-write) is ignored.
 //
@@ -18,6 +19,7 @@
 #include <string>
 
 #include <frictionid/io/summary_table.hpp>
+#include "io/file_fingerprint.hpp"
 
 namespace frictionid::app {
 
@@ -30,13 +32,16 @@ class BatchJournal {
   BatchJournal(const BatchJournal&) = delete;
   BatchJournal& operator=(const BatchJournal&) = delete;
 
-  // The row recorded for label with this key, when the run finished with status ok. Failed runs
-  // are fitted again: their cause (a file being written, memory) may be gone.
-  const SummaryRow* finished(const std::string& label, std::uint64_t key) const;
+  // The row recorded for label with this key, when the run finished with status ok and its fit
+  // read the bytes `input` now holds. Failed runs are fitted again: their cause (a file being
+  // written, memory) may be gone. `changed`, when given, is set when the line is there but its
+  // fit read other bytes (the file was replaced while the batch ran, then restored).
+  const SummaryRow* finished(const std::string& label, std::uint64_t key,
+                             const FileFingerprint& input, bool* changed = nullptr) const;
 
-  // Appends one line, and syncs when the last sync is kJournalSyncInterval old; safe to call
-  // from several threads.
-  void record(std::uint64_t key, const SummaryRow& row);
+  // Appends one line, with the fingerprint of the bytes the fit read, and syncs when the last
+  // sync is kJournalSyncInterval old; safe to call from several threads.
+  void record(std::uint64_t key, const SummaryRow& row, const FileFingerprint& read);
 
   // Makes every line and every file written before it on the journal's file system durable.
   void sync();
@@ -45,6 +50,7 @@ class BatchJournal {
   struct Entry {
     std::uint64_t key;
     SummaryRow row;
+    std::string sha256;  // of the bytes its fit read; empty in a line of an earlier version
   };
   void sync_locked();  // with mutex_ held
 

@@ -1,11 +1,14 @@
 #include "app/batch_runs.hpp"
 
 #include <glob.h>
+#include <sys/stat.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -17,6 +20,7 @@
 #include "app/fit_request.hpp"
 #include "app/option_parsers.hpp"
 #include "app/request_json.hpp"
+#include "io/file_fingerprint.hpp"
 
 namespace frictionid::app {
 
@@ -30,13 +34,6 @@ struct BatchEntry {
   FitRequest options;
   std::vector<Covariate> covariates;
 };
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // FNV-1a, 64 bit: a stable hash (std::hash may differ between builds) for the journal's keys.
 std::uint64_t fnv1a(const std::string& bytes, std::uint64_t h = 1469598103934665603ull) {
@@ -98,21 +95,70 @@ std::string stem_of(const std::string& path) {
   return p.extension() == ".csv" ? p.stem().string() : p.filename().string();
 }
 
-std::vector<std::string> csv_files_in(const std::string& dir) {
+// Why `path` cannot be read as a batch input file, or "" when it can (a regular file, also
+// through symbolic links).
+std::string not_an_input(const std::string& path) {
+  struct stat sb;
+  if (::stat(path.c_str(), &sb) != 0)
+    return errno == ELOOP    ? "a loop of symbolic links"
+           : errno == EACCES ? "permission denied"
+           : errno == ENOENT ? "no such file or directory"
+                             : std::strerror(errno);
+  if (S_ISREG(sb.st_mode)) return "";
+  return S_ISFIFO(sb.st_mode)   ? "not a regular file (a FIFO)"
+         : S_ISCHR(sb.st_mode)  ? "not a regular file (a character device)"
+         : S_ISBLK(sb.st_mode)  ? "not a regular file (a block device)"
+         : S_ISSOCK(sb.st_mode) ? "not a regular file (a socket)"
+         : S_ISDIR(sb.st_mode)  ? "a directory"
+                                : "not a regular file";
+}
+
+std::string listing_error(const std::error_code& ec) {
+  return ec == std::errc::permission_denied ? "permission denied" : ec.message();
+}
+
+// The *.csv files of a directory, sorted; the ones that cannot be inputs (a FIFO, a device, a
+// loop of links) are left out and named in `skipped`.
+std::vector<std::string> csv_files_in(const std::string& dir, std::vector<std::string>& skipped) {
   std::vector<std::string> out;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().extension() == ".csv" && fs::is_regular_file(e.path()))
-      out.push_back(e.path().string());
+  std::error_code ec;
+  fs::directory_iterator it(dir, ec);
+  if (ec) throw InputError(dir, 0, 0, "cannot list this directory: " + listing_error(ec));
+  for (; it != fs::directory_iterator(); it.increment(ec)) {
+    if (ec) throw InputError(dir, 0, 0, "cannot list this directory: " + listing_error(ec));
+    const fs::path& p = it->path();
+    if (p.extension() != ".csv") continue;
+    const std::string why = not_an_input(p.string());
+    if (why.empty())
+      out.push_back(p.string());
+    else
+      skipped.push_back(p.string() + ": " + why);
+  }
+  if (ec) throw InputError(dir, 0, 0, "cannot list this directory: " + listing_error(ec));
   std::sort(out.begin(), out.end());
-  if (out.empty()) throw InputError(dir, 0, 0, "no *.csv file in this directory");
+  std::sort(skipped.begin(), skipped.end());
   return out;
 }
 
-// Files named by one input: itself, a directory's *.csv, or a glob's matches (sorted).
-std::vector<std::string> expand_input(const std::string& input) {
+// Files named by one input: itself, a directory's *.csv, or a glob's matches (sorted). What a
+// directory or a glob holds that cannot be fitted is skipped and named; a file named directly
+// that cannot be read is an error.
+std::vector<std::string> expand_input(const std::string& input, std::vector<std::string>& skipped) {
   std::error_code ec;
-  if (fs::is_directory(input, ec)) return csv_files_in(input);
-  if (fs::is_regular_file(input, ec)) return {input};
+  const std::string why = not_an_input(input);
+  if (why.empty()) return {input};
+  if (why == "a directory") {
+    std::vector<std::string> skipped_here;
+    auto files = csv_files_in(input, skipped_here);
+    skipped.insert(skipped.end(), skipped_here.begin(), skipped_here.end());
+    if (files.empty())
+      throw InputError(input, 0, 0,
+                       skipped_here.empty()
+                           ? "no *.csv file in this directory"
+                           : "no *.csv file here can be read (" + skipped_here.front() + ")");
+    return files;
+  }
+  if (why != "no such file or directory") throw InputError(input, 0, 0, why);
   if (input.find_first_of("*?[") != std::string::npos) {
     glob_t g{};
     const int rc = ::glob(input.c_str(), 0, nullptr, &g);
@@ -122,11 +168,18 @@ std::vector<std::string> expand_input(const std::string& input) {
     ::globfree(&g);
     std::vector<std::string> files;
     for (const auto& m : out) {
-      if (fs::is_directory(m, ec)) {
-        const auto inside = csv_files_in(m);
-        files.insert(files.end(), inside.begin(), inside.end());
-      } else if (fs::is_regular_file(m, ec)) {
+      const std::string reason = not_an_input(m);
+      if (reason.empty()) {
         files.push_back(m);
+      } else if (reason == "a directory") {
+        std::vector<std::string> skipped_here;
+        const auto inside = csv_files_in(m, skipped_here);
+        if (inside.empty() && skipped_here.empty())
+          skipped_here.push_back(m + ": no *.csv file in this directory");
+        skipped.insert(skipped.end(), skipped_here.begin(), skipped_here.end());
+        files.insert(files.end(), inside.begin(), inside.end());
+      } else {
+        skipped.push_back(m + ": " + reason);
       }
     }
     if (files.empty()) throw InputError(input, 0, 0, "the pattern matches no CSV file");
@@ -175,10 +228,11 @@ std::vector<BatchEntry> manifest_entries(const std::string& manifest, const FitR
     if (rel.empty())
       throw InputError(manifest, line, path_col + 1, "empty path; expected a CSV file");
     const fs::path p = fs::path(rel).is_absolute() ? fs::path(rel) : base / rel;
-    std::error_code ec;
-    if (!fs::is_regular_file(p, ec))
+    if (const std::string why = not_an_input(p.string()); !why.empty())
       throw InputError(manifest, line, path_col + 1,
-                       "no such file '" + rel + "' (paths are relative to the manifest)");
+                       why == "no such file or directory"
+                           ? "no such file '" + rel + "' (paths are relative to the manifest)"
+                           : "'" + rel + "': " + why);
     BatchEntry e;
     e.path = p.lexically_normal().string();
     e.label = label_col >= 0 && !cells[label_col].empty() ? cells[label_col] : stem_of(rel);
@@ -297,10 +351,12 @@ Dataset select_rows(const Dataset& d, const std::vector<std::size_t>& rows) {
 
 std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, const FitRequest& o,
                                       const std::vector<std::string>& group_columns,
-                                      const std::string& key_extra) {
+                                      const std::string& key_extra,
+                                      std::vector<std::string>* skipped) {
   std::vector<BatchEntry> entries;
+  std::vector<std::string> skipped_here;
   for (const auto& input : inputs)
-    for (const auto& file : expand_input(input)) {
+    for (const auto& file : expand_input(input, skipped_here)) {
       if (is_manifest(file)) {
         auto more = manifest_entries(file, o);
         entries.insert(entries.end(), more.begin(), more.end());
@@ -308,17 +364,19 @@ std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, co
         entries.push_back({file, stem_of(file), o, {}});
       }
     }
+  if (skipped) *skipped = std::move(skipped_here);
   if (entries.empty()) throw InputError("batch: no CSV file to fit among the inputs");
 
   check_names("--group-by", group_columns);
   for (const auto& name : group_columns) check_covariate_name(name, "--group-by");
   std::vector<BatchRun> runs;
   for (auto& e : entries) {
-    const std::string bytes = read_bytes(e.path);
+    // Hashed as a stream: planning memory does not grow with the file.
+    const FileFingerprint input = fingerprint_file(e.path);
     const std::uint64_t file_key =
-        fnv1a(options_text(e.options) + '\x1e' + key_extra, fnv1a(bytes));
+        fnv1a(options_text(e.options) + '\x1e' + key_extra, fnv1a(input.sha256));
     if (group_columns.empty()) {
-      runs.push_back({e.label, "", e.path, e.options, nullptr, {}, e.covariates, file_key});
+      runs.push_back({e.label, "", e.path, e.options, nullptr, {}, e.covariates, file_key, input});
       continue;
     }
     auto data = std::make_shared<const Dataset>(load_dataset_csv(e.path, e.options.columns));
@@ -346,6 +404,7 @@ std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, co
         group_text += group_columns[k] + '\x1f' + values[k] + '\x1e';
       }
       run.key = fnv1a(group_text, file_key);
+      run.input = input;
       runs.push_back(std::move(run));
     }
   }

@@ -11,6 +11,7 @@
 #include <frictionid/dataset.hpp>
 #include <frictionid/io/summary_table.hpp>
 #include "app/requests.hpp"
+#include "io/file_fingerprint.hpp"
 
 namespace frictionid::app {
 
@@ -25,15 +26,21 @@ struct BatchRun {
   std::vector<std::size_t> group_rows;
   std::vector<Covariate> covariates;  // manifest columns and group values, as text
   std::uint64_t key = 0;  // hash of the file's bytes, the group and the options (batch journal)
+  FileFingerprint input;  // the file's bytes when the batch was planned
 };
 
 // Throws InputError (exit 2) for: an input that matches no CSV, a missing file, a manifest
 // with no `path` column or a path that does not exist (naming manifest:line:column), a bad
 // per-run option value, an unknown --group-by column, two runs with the same label.
-// `key_extra` (e.g. the per-run report kind) enters every run's key.
+// `key_extra` (e.g. the per-run report kind) enters every run's key. What a directory or a glob
+// holds that cannot be an input (a FIFO, a device, a loop of symbolic links, an empty directory
+// a glob matched) is left out and named in `skipped` ("path: reason"); a file named directly or
+// by a manifest that is not a regular file, or a directory that cannot be listed, is an
+// InputError.
 std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, const FitRequest& o,
                                       const std::vector<std::string>& group_columns,
-                                      const std::string& key_extra);
+                                      const std::string& key_extra,
+                                      std::vector<std::string>* skipped = nullptr);
 
 // Throws InputError (naming `where`) when a covariate (a manifest or --group-by column) would
 // take the name of one of the summary table's own columns.

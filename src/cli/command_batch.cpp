@@ -67,8 +67,9 @@ void write_run_report(const BatchContext& c, const BatchRun& run, const FitResul
 
 // One run's outcome: a failure of any kind is a failed row, never the end of the batch.
 // `fitted`, when given, receives the successful fit.
+// `read` receives the fingerprint of the bytes the fit read (for the journal).
 SummaryRow fit_run(const BatchContext& c, const BatchRun& run, const WarmStart* warm,
-                   std::optional<FitResult>* fitted = nullptr) {
+                   FileFingerprint& read, std::optional<FitResult>* fitted = nullptr) {
   TerminalObserver observer(c.interrupted, /*progress=*/false);
   return fit_batch_run(
       run, c.fit_threads, &observer,
@@ -76,7 +77,7 @@ SummaryRow fit_run(const BatchContext& c, const BatchRun& run, const WarmStart* 
         write_run_report(c, run, r, data);
         if (fitted) *fitted = r;
       },
-      warm);
+      warm, &read);
 }
 
 // With --warm-start every run but the first depends on the first run's fit: a journal entry
@@ -132,18 +133,35 @@ int run_batch(const BatchRequest& o) {
   if (fs::exists(o.fit.report, ec) && !fs::is_directory(o.fit.report, ec))
     throw InputError(o.fit.report, 0, 0, "--report: exists and is not a directory");
 
+  std::vector<std::string> skipped;
   std::vector<BatchRun> runs =
-      plan_batch_runs(o.inputs, o.fit, o.group_by, "reports=" + o.per_run_reports);
+      plan_batch_runs(o.inputs, o.fit, o.group_by, "reports=" + o.per_run_reports, &skipped);
+  for (const auto& s : skipped)
+    std::fprintf(stderr, "frictionid: skipped %s\n", text::for_terminal(s).c_str());
   if (o.warm_start) key_on_first_run(runs);
   check_shared_parameters(runs, shared);
   check_trend_x(o.trend_x, runs);
   fs::create_directories(o.fit.report);
+  // A killed batch may have left a run's report half-renamed: its temporary files go, as a
+  // fit's leftovers do (the lock keeps any other writer out).
+  remove_atomic_leftovers(o.fit.report);
+  if (std::error_code list_error; fs::is_directory(fs::path(o.fit.report) / "runs", list_error))
+    for (const auto& e : fs::directory_iterator(fs::path(o.fit.report) / "runs", list_error))
+      if (e.is_directory(list_error) && !e.is_symlink(list_error))
+        remove_atomic_leftovers(e.path().string());
   BatchJournal journal((fs::path(o.fit.report) / "journal.jsonl").string(), o.force);
 
   std::vector<std::optional<SummaryRow>> rows(runs.size());
   std::vector<std::size_t> pending;
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    const SummaryRow* done = journal.finished(runs[i].label, runs[i].key);
+    bool changed = false;
+    const SummaryRow* done = journal.finished(runs[i].label, runs[i].key, runs[i].input, &changed);
+    if (changed)
+      std::fprintf(stderr,
+                   "frictionid: run '%s': its journal line is of other bytes than %s holds now "
+                   "(the file changed while it was fitted); fitting it again\n",
+                   text::for_terminal(runs[i].label).c_str(),
+                   text::for_terminal(runs[i].path).c_str());
     if (done && has_run_report(o.fit.report, o.per_run_reports, runs[i]))
       rows[i] = *done;
     else
@@ -179,9 +197,10 @@ int run_batch(const BatchRequest& o) {
     std::optional<FitResult> first;
     // Interrupted, the workers stop at once and the batch ends as any interrupted batch does.
     if (pending.front() == 0) {
-      SummaryRow row = fit_run(alone, runs[0], nullptr, &first);
+      FileFingerprint read;
+      SummaryRow row = fit_run(alone, runs[0], nullptr, read, &first);
       if (!interrupted->load()) {
-        journal.record(runs[0].key, row);
+        journal.record(runs[0].key, row, read);
         ++fitted;
         if (!row.ok) ++failed;
         rows[0] = std::move(row);
@@ -205,10 +224,11 @@ int run_batch(const BatchRequest& o) {
       const std::size_t k = next.fetch_add(1);
       if (k >= pending.size()) return;
       const BatchRun& run = runs[pending[k]];
-      SummaryRow row = fit_run(context, run, warm_start);
+      FileFingerprint read;
+      SummaryRow row = fit_run(context, run, warm_start, read);
       if (interrupted->load()) return;  // a cancelled fit is not an outcome: fit it next time
       try {
-        journal.record(run.key, row);
+        journal.record(run.key, row, read);
       } catch (...) {
         std::lock_guard<std::mutex> guard(mutex);
         if (!first_error) first_error = std::current_exception();

@@ -154,4 +154,22 @@ void replace_regular_file(const std::string& path, const std::string& content, F
 }
 
 }  // namespace
+int remove_atomic_leftovers(const std::string& dir) {
+  int removed = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec); !ec && it != fs::directory_iterator();
+       it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const std::size_t tmp = name.rfind(".tmp.");
+    // ".NAME.tmp.XXXXXX": a dot, a name, ".tmp." and mkstemp's six characters.
+    if (name.size() < 13 || name[0] != '.' || tmp == std::string::npos || tmp < 2 ||
+        name.size() - tmp != 11)
+      continue;
+    std::error_code status_error;
+    if (!it->is_regular_file(status_error)) continue;
+    if (fs::remove(it->path(), status_error)) ++removed;
+  }
+  return removed;
+}
+
 }  // namespace frictionid

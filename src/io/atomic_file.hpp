@@ -23,4 +23,9 @@ enum class Flush { Now, Later };
 void write_file_atomically(const std::string& path, const std::string& content,
                            Flush flush = Flush::Now);
 
+// Removes the temporary files that write_file_atomically left in `dir` when it was killed
+// between creating one and renaming it (".NAME.tmp.XXXXXX"); only for a directory the caller
+// holds the lock of, where no other writer can be at work. Returns how many it removed.
+int remove_atomic_leftovers(const std::string& dir);
+
 }  // namespace frictionid

@@ -26,6 +26,7 @@
 #include "app/requests.hpp"
 #include "identify/thread_budget.hpp"
 #include "io/atomic_file.hpp"
+#include "io/text.hpp"
 #include "python/bindings.hpp"
 
 namespace py = pybind11;
@@ -80,11 +81,18 @@ app::BatchRun run_from_json(const std::string& text) {
 std::vector<std::string> plan(const std::vector<std::string>& inputs, const app::FitRequest& o,
                               const std::vector<std::string>& group_by) {
   std::vector<app::BatchRun> runs;
+  std::vector<std::string> skipped;
   {
     py::gil_scoped_release release;
     (void)app::fit_settings(o, o.model);
-    runs = app::plan_batch_runs(inputs, o, group_by, "");
+    runs = app::plan_batch_runs(inputs, o, group_by, "", &skipped);
   }
+  // As `frictionid batch` names them on stderr: a FIFO, a device or a loop of links in a
+  // directory or a glob's matches is left out with a warning.
+  for (const auto& s : skipped)
+    if (PyErr_WarnEx(PyExc_UserWarning, ("frictionid: skipped " + text::for_terminal(s)).c_str(),
+                     1) != 0)
+      throw py::error_already_set();
   std::vector<std::string> out;
   for (const auto& run : runs) out.push_back(run_json(run));
   return out;
