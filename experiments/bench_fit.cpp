@@ -2,6 +2,8 @@
 // (residuals, Jacobian, J^T J) and the residual-only pass at a trial point. 100,000 rows of the
 // default `generate` design (4 channels, slip along x), one thread unless the name says so;
 // every model parameter free (seed: 6, exact hertz: f, kappa, h; exact power:1.7: also n).
+// "RowByRow": the closed-form passes with the packet pass turned off (allow_row_packets), as a
+// processor without AVX2 or a FRICTIONID_PORTABLE build runs them.
 #include <benchmark/benchmark.h>
 
 #include <frictionid/synthetic_data.hpp>
@@ -43,8 +45,10 @@ Setup make_setup(ModelKind kind, const model::PressureLaw<double>& law, int thre
 }
 
 void normal_equations_pass(benchmark::State& state, ModelKind kind,
-                           const model::PressureLaw<double>& law, int threads) {
+                           const model::PressureLaw<double>& law, int threads,
+                           bool packets = true) {
   Setup s = make_setup(kind, law, threads);
+  allow_row_packets(packets);
   s.problem.settings = &s.settings;
   s.problem.rows.data = &s.data;
   NormalEquations ne;
@@ -52,15 +56,18 @@ void normal_equations_pass(benchmark::State& state, ModelKind kind,
     benchmark::DoNotOptimize(normal_equations(s.problem, s.x, ne));
     benchmark::DoNotOptimize(ne.rtr);
   }
+  allow_row_packets(true);
   state.SetItemsProcessed(state.iterations() * static_cast<long>(s.data.rows()));
 }
 
 void residual_pass(benchmark::State& state, ModelKind kind, const model::PressureLaw<double>& law,
-                   int threads) {
+                   int threads, bool packets = true) {
   Setup s = make_setup(kind, law, threads);
   s.problem.settings = &s.settings;
   s.problem.rows.data = &s.data;
+  allow_row_packets(packets);
   for (auto _ : state) benchmark::DoNotOptimize(problem_cost(s.problem, s.x));
+  allow_row_packets(true);
   state.SetItemsProcessed(state.iterations() * static_cast<long>(s.data.rows()));
 }
 
@@ -73,6 +80,11 @@ BENCHMARK_CAPTURE(normal_equations_pass, SeedJacobianPass2Threads, ModelKind::Se
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK_CAPTURE(residual_pass, SeedResidualPass, ModelKind::Seed, kHertz, 1)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(normal_equations_pass, SeedJacobianPassRowByRow, ModelKind::Seed, kHertz, 1,
+                  false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(residual_pass, SeedResidualPassRowByRow, ModelKind::Seed, kHertz, 1, false)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(normal_equations_pass, ExactHertzJacobianPass, ModelKind::Exact, kHertz, 1)
     ->Unit(benchmark::kMillisecond);

@@ -2,14 +2,15 @@
 // (v_y = 0: the common case of test-rig data). Each value is a 4-lane vector, one row per lane,
 // and each derivative a vector of those: forward-mode autodiff as ceres::Jet does it, with the
 // same operations in the same order (no fused multiply-add), so every lane holds the bits the
-// Jet of its row would. Only the aligned branch of approximant_resultants (approximants.hpp) and
-// the plain least-squares residual (residuals.hpp, no robust loss) are written here; every other
-// row takes the scalar path. Included by local_stage.cpp only, which compiles it twice: for the
-// baseline instruction set and for AVX2, chosen at run time.
+// Jet of its row would. The physics is not written here: the model's own templates
+// (axis_slip in kinematics.hpp; eps_factors, axis_row and axis_resultants in approximants.hpp)
+// are instantiated with vectors for the plain numbers and Dual below for the dual numbers. This
+// file adds the vector arithmetic and the plain least-squares residual (residuals.hpp, no
+// robust loss); every other row takes the scalar path. Compiled only where the compiler targets
+// x86-64 (chunk_kernels.hpp), inside functions compiled for AVX2 and chosen at run time.
 #pragma once
 
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -23,7 +24,7 @@
 
 // Every function that takes or returns Lanes by value is inlined: no call passes a 32-byte
 // vector, so the ABI note GCC gives for them without AVX does not apply (-Wno-psabi, set for
-// local_stage.cpp in src/CMakeLists.txt).
+// local_stage.cpp, which includes this through chunk_kernels.hpp, in src/CMakeLists.txt).
 namespace frictionid::packets {
 
 #define FRICTIONID_PACKET_INLINE inline __attribute__((always_inline))
@@ -44,14 +45,8 @@ FRICTIONID_PACKET_INLINE Lanes load(const double* x) {
   return r;
 }
 
-// fabs of each lane: the sign bit cleared (-0 too).
-FRICTIONID_PACKET_INLINE Lanes abs(Lanes x) {
-  const std::int64_t magnitude = 0x7fffffffffffffff;
-  return reinterpret_cast<Lanes>(reinterpret_cast<Mask>(x) & magnitude);
-}
-
 // Square roots of the four lanes in one instruction. The packet pass runs only where the
-// processor has AVX2 (avx2_available) and inside functions compiled for it, where this inlines;
+// processor has AVX2 (chunk_kernels.hpp) and inside functions compiled for it, where this inlines;
 // elsewhere the scalar path is as fast (4-lane vectors on SSE2 are not). By pointer: a 32-byte
 // vector by value changes the ABI.
 __attribute__((target("avx2"))) inline void sqrt_avx2(const Lanes* x, Lanes* r) {
@@ -61,16 +56,6 @@ FRICTIONID_PACKET_INLINE Lanes sqrt(Lanes x) {
   Lanes r;
   sqrt_avx2(&x, &r);
   return r;
-}
-
-// Whether this processor has AVX2 and the packets are allowed (allow_row_packets in
-// local_stage.hpp; the tests compare the two paths).
-inline std::atomic<bool>& row_packets_allowed() {
-  static std::atomic<bool> allowed{true};
-  return allowed;
-}
-inline bool avx2_available() {
-  return __builtin_cpu_supports("avx2") && row_packets_allowed().load(std::memory_order_relaxed);
 }
 
 // A value and its N derivatives, each for four rows.
@@ -100,7 +85,7 @@ Dual<N> broadcast(const Jet& j) {
 
 // ceres::Jet's f * g: (f.a g.a, f.a g.v + f.v g.a).
 template <int N>
-FRICTIONID_PACKET_INLINE Dual<N> mul(const Dual<N>& f, const Dual<N>& g) {
+FRICTIONID_PACKET_INLINE Dual<N> operator*(const Dual<N>& f, const Dual<N>& g) {
   Dual<N> r;
   r.a = f.a * g.a;
   for (int k = 0; k < N; ++k) r.v[k] = f.a * g.v[k] + f.v[k] * g.a;
@@ -109,23 +94,15 @@ FRICTIONID_PACKET_INLINE Dual<N> mul(const Dual<N>& f, const Dual<N>& g) {
 
 // f * s for a plain number s per lane.
 template <int N>
-FRICTIONID_PACKET_INLINE Dual<N> mul(const Dual<N>& f, Lanes s) {
+FRICTIONID_PACKET_INLINE Dual<N> operator*(const Dual<N>& f, const Lanes& s) {
   Dual<N> r;
   r.a = f.a * s;
   for (int k = 0; k < N; ++k) r.v[k] = f.v[k] * s;
   return r;
 }
 
-// c + f * s: what the models write T(c) + f * s (s = 1: T(c) + f).
-template <int N>
-FRICTIONID_PACKET_INLINE Dual<N> affine(Lanes c, const Dual<N>& f, Lanes s) {
-  Dual<N> r;
-  r.a = c + f.a * s;
-  for (int k = 0; k < N; ++k) r.v[k] = f.v[k] * s;
-  return r;
-}
-
-// inv_sqrt of scalar_ops.hpp: 1/sqrt(x), derivative -x^(-3/2)/2.
+// inv_sqrt of scalar_ops.hpp: 1/sqrt(x), derivative -x^(-3/2)/2. Found by argument-dependent
+// lookup from the model's templates, and preferred there to the generic one as more specialised.
 template <int N>
 FRICTIONID_PACKET_INLINE Dual<N> inv_sqrt(const Dual<N>& x) {
   Dual<N> r;
@@ -138,9 +115,10 @@ FRICTIONID_PACKET_INLINE Dual<N> inv_sqrt(const Dual<N>& x) {
 // The parameters of one pass, broadcast.
 template <int N>
 struct PacketParams {
-  Dual<N> f, h, a, b, m, p0, fkh, spin;
+  model::ApproximantForm form = model::ApproximantForm::Seed;
+  model::ApproximantParams<Dual<N>> p;
+  model::ApproximantProducts<Dual<N>> pp;
   double rho_roll = 0.0;
-  bool seed = true;
 };
 
 template <int N, typename Jet>
@@ -148,16 +126,11 @@ PacketParams<N> packet_params(model::ApproximantForm form, const model::Approxim
                               const model::ApproximantShape<double>& shape) {
   const model::ApproximantProducts<Jet> pp = model::approximant_products(p, shape);
   PacketParams<N> out;
-  out.f = broadcast<N>(p.f);
-  out.h = broadcast<N>(p.h);
-  out.a = broadcast<N>(p.a);
-  out.b = broadcast<N>(p.b);
-  out.m = broadcast<N>(p.m);
-  out.p0 = broadcast<N>(p.p0);
-  out.fkh = broadcast<N>(pp.fkh);
-  out.spin = broadcast<N>(pp.spin);
+  out.form = form;
+  out.p = {broadcast<N>(p.f), broadcast<N>(p.kappa), broadcast<N>(p.h), broadcast<N>(p.a),
+           broadcast<N>(p.b), broadcast<N>(p.m),     broadcast<N>(p.p0)};
+  out.pp = {broadcast<N>(pp.fkh), broadcast<N>(pp.spin)};
   out.rho_roll = shape.rho_roll;
-  out.seed = form == model::ApproximantForm::Seed;
   return out;
 }
 
@@ -173,7 +146,8 @@ inline bool packet_row(const Dataset& d, std::size_t i) {
 // alignas: outside AVX2 code GCC aligns a 32-byte vector to 16 bytes only, so a heap copy made
 // there would not be where the AVX2 code's aligned loads expect it.
 struct alignas(32) PacketGeometry {
-  Lanes ca_n, s_n, s_nr, nr, y_t0, y_t1, y_p0, y_p1, ph, pc, g_e, g_f, g_g;
+  model::EpsFactors<Lanes> eps;
+  model::AxisRow<Lanes> row;
   Lanes value[kChannelCount], w[kChannelCount];
   Mask measured[kChannelCount];
 };
@@ -181,32 +155,11 @@ struct alignas(32) PacketGeometry {
 FRICTIONID_PACKET_INLINE void packet_geometry(const ResidualRows& rows, std::size_t i,
                                               PacketGeometry& g) {
   const Dataset& d = *rows.data;
-  // The slip geometry of the four rows as slip_geometry gives it for v_y = 0, lane by lane:
-  // u = |omega| R, v = |v_x|, eps = v/u (inf for u = 0), 1/eps = u/v (inf for v = 0).
-  const Lanes zero = broadcast(0.0), one = broadcast(1.0), inf = broadcast(HUGE_VAL);
   const Lanes vx = load(&d.v_x[i]), om = load(&d.omega[i]), nn = load(&d.N[i]), rr = load(&d.R[i]);
-  const Lanes u = abs(om) * rr, v = abs(vx);
-  const Lanes eps = u > zero ? v / u : inf, inv_eps = v > zero ? u / v : inf;
-  const Lanes s = om > zero ? one : (om < zero ? -one : zero);
-  const Lanes ca = vx < zero ? -one : one;
-  const Mask small = eps <= one;
-  const Lanes ee = eps * eps, q = small ? zero : inv_eps, inv2 = q * q;
-  const Lanes f_t = small ? eps : one;
-  g.ca_n = f_t * ca * nn;
-  g.s_n = s * nn;
-  g.s_nr = s * nn * rr;
-  g.nr = nn * rr;
-  // y_t = small ? e2 + a : 1 + a inv2; y_p's first factor small ? 1 + b e2 : inv2 + b.
-  g.y_t0 = small ? ee : one;
-  g.y_t1 = small ? one : inv2;
-  g.y_p0 = small ? one : inv2;
-  g.y_p1 = small ? ee : one;
-  g.ph = small ? eps : q;  // the seed's p_hat factor
-  g.pc = small ? one : q;  // the corrected form's
-  // g = g_g / sqrt(g_e + m g_f)
-  g.g_e = small ? one : inv2;
-  g.g_f = small ? ee : one;
-  g.g_g = small ? one : q;
+  const model::AxisSlip<Lanes> slip = model::axis_slip(vx, om, rr);
+  g.eps = model::eps_factors(slip.eps, slip.inv_eps);
+  g.row = model::axis_row(g.eps, slip.cos_alpha, slip.spin_sign, nn, rr);
+  const Lanes zero = broadcast(0.0), one = broadcast(1.0);
   const std::size_t nc = rows.channels.size();
   for (std::size_t j = 0; j < nc; ++j) {
     const int ci = static_cast<int>(rows.channels[j]);
@@ -227,18 +180,12 @@ FRICTIONID_PACKET_INLINE bool packet_residuals(const PacketGeometry& g, const Re
                                                const PacketParams<N>& p,
                                                Dual<N> (&res)[kChannelCount]) {
   const Lanes zero = broadcast(0.0);
-  const Dual<N> y_t = affine(g.y_t0, p.a, g.y_t1);
-  const Dual<N> c_p = affine(g.y_p0, p.b, g.y_p1);
-  const Dual<N> y_p = p.seed ? mul(c_p, y_t) : c_p;
-  const Dual<N> p_hat = p.seed ? mul(inv_sqrt(y_p), g.ph) : mul(p.p0, mul(inv_sqrt(y_p), g.pc));
-  const Dual<N> t = mul(inv_sqrt(y_t), g.ca_n);
-  // small: inv_sqrt(1 + m e2) as it is; large: q inv_sqrt(inv2 + m), the factor 1 exact.
-  const Dual<N> g_aligned = mul(inv_sqrt(affine(g.g_e, p.m, g.g_f)), g.g_g);
+  const model::AxisResultants<Dual<N>> a = model::axis_resultants(p.form, p.p, p.pp, g.eps, g.row);
   Dual<N> out[kChannelCount];
-  out[static_cast<int>(Channel::T_x)] = mul(p.f, t);
-  out[static_cast<int>(Channel::T_y)] = mul(p.fkh, mul(p_hat, g.s_n));
-  out[static_cast<int>(Channel::M_z)] = mul(p.spin, mul(g_aligned, g.s_nr));
-  out[static_cast<int>(Channel::M_roll)] = mul(p.h, g.nr * p.rho_roll);
+  out[static_cast<int>(Channel::T_x)] = a.T_x;
+  out[static_cast<int>(Channel::T_y)] = a.T_y;
+  out[static_cast<int>(Channel::M_z)] = a.M_z;
+  out[static_cast<int>(Channel::M_roll)] = model::rolling_moment(p.p.h, g.row.nr, p.rho_roll);
 
   // Residuals (model - measured) w; 0 where the channel is not measured.
   const std::size_t nc = rows.channels.size();

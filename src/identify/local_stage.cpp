@@ -7,9 +7,9 @@
 // k+1 residuals [w; rho] with Jacobian [A; 0]. Levenberg-Marquardt sees the same cost, gradient,
 // Gauss-Newton matrix and predicted decrease as with the m rows themselves (what
 // DENSE_NORMAL_CHOLESKY would form), but never stores an m x k Jacobian: memory stays O(k^2),
-// the work is one pass over the rows, and the bits do not depend on the thread count. Where the
-// processor has AVX2, the closed-form models' rows of slip along x go four at a time, a row per
-// vector lane (aligned_row_packets.hpp), in functions compiled for AVX2 and chosen at run time.
+// the work is one pass over the rows, and the bits do not depend on the thread count. Each pass
+// runs a kernel per chunk of rows (chunk_kernels.hpp): where the build and the processor have
+// AVX2, the closed-form models' rows of slip along x go four at a time, a row per vector lane.
 
 // GCC's inliner runs out of budget inside the large Jet expressions of the models and leaves
 // Eigen's 6-element vector operations as calls, which then cost more than the arithmetic.
@@ -30,7 +30,7 @@
 #include <memory>
 #include <optional>
 
-#include "identify/aligned_row_packets.hpp"
+#include "identify/chunk_kernels.hpp"
 #include "identify/normal_equations.hpp"
 #include "identify/row_chunks.hpp"
 #include "identify/solver_progress.hpp"
@@ -38,141 +38,19 @@
 namespace frictionid {
 namespace {
 
-std::size_t chunk_begin(const LocalProblem& p, std::size_t c) {
-  return p.rows.begin + c * kChunkRows;
-}
-std::size_t chunk_end(const LocalProblem& p, std::size_t c) {
-  return std::min(chunk_begin(p, c) + kChunkRows, p.rows.end);
-}
-std::size_t problem_chunks(const LocalProblem& p) {
-  return chunk_count(p.rows.end - p.rows.begin);
-}
-
-// Whether the packet pass (aligned_row_packets.hpp) applies: a closed-form model without a
-// robust loss, on a processor with AVX2.
-bool packets_apply(const FitSettings& s) {
-  return s.model != ModelKind::Exact && s.loss == LossKind::None && packets::avx2_available();
-}
-
-// The packet pass's parameters where it applies. params: doubles or Jets, in ParamVector order.
-template <int N, typename T>
-std::optional<packets::PacketParams<N>> packet_params_for(const FitSettings& s, const T* params) {
-  if (!packets_apply(s)) return std::nullopt;
-  const bool seed = s.model == ModelKind::Seed;
-  const model::ApproximantParams<T> ap{
-      params[kF], params[kKappa], params[kH], params[kA], seed ? params[kB] : params[kBTilde],
-      params[kM], params[kP0]};
-  return packets::packet_params<N>(
-      seed ? model::ApproximantForm::Seed : model::ApproximantForm::Corrected, ap,
-      model::approximant_shape(model::law_moments(s.law)));
-}
-
-// Whether rows i .. i+3 of [i, end) all go in a packet. Inlined into the AVX2 passes: a call to
-// it, compiled for plain SSE2, from a loop with live 256-bit registers cost some processors (seen
-// on AMD Zen 3) more than the packet's arithmetic.
-FRICTIONID_PACKET_INLINE bool packet_ahead(const Dataset& d, std::size_t i, std::size_t end) {
-  return i + packets::kLanes <= end && packets::packet_row(d, i) && packets::packet_row(d, i + 1) &&
-         packets::packet_row(d, i + 2) && packets::packet_row(d, i + 3);
-}
-
-}  // namespace
-
-// The packets of a problem's rows as the passes meet them, each with its geometry formed once
-// (RepeatedCost).
-struct PacketRowCache {
-  std::vector<packets::PacketGeometry> geometry;  // in row order
-  std::vector<std::int32_t> packet_at;  // per row from rows.begin: its packet's index, or -1
-};
-
-namespace {
-
-// The squared residuals of rows [i0, i1) in plain doubles, summed row by row: four rows at a
-// time where packet_ahead holds and pp is given, one at a time otherwise; a packet's geometry
-// from `cache` where given. False if one is not finite.
-template <bool kPackets>
-FRICTIONID_PACKET_INLINE bool sum_chunk(const LocalProblem& p, const ModelEvaluator<double>& model,
-                                        const packets::PacketParams<0>* pp,
-                                        const PacketRowCache* cache, std::size_t i0, std::size_t i1,
-                                        double& sum_sq) {
-  const FitSettings& s = *p.settings;
-  const std::size_t nc = p.rows.channels.size();
-  double buf[kChannelCount];
-  double sum = 0.0;
-  for (std::size_t i = i0; i < i1;) {
-    if constexpr (kPackets)
-      if (pp &&
-          (cache ? cache->packet_at[i - p.rows.begin] >= 0 : packet_ahead(*p.rows.data, i, i1))) {
-        packets::Dual<0> res[kChannelCount];
-        const bool finite =
-            cache
-                ? packets::packet_residuals(
-                      cache->geometry[static_cast<std::size_t>(cache->packet_at[i - p.rows.begin])],
-                      p.rows, *pp, res)
-                : packets::packet_residuals(p.rows, *pp, i, res);
-        if (!finite) return false;
-        // Row by row, as the scalar pass adds them.
-        for (int l = 0; l < packets::kLanes; ++l)
-          for (std::size_t j = 0; j < nc; ++j) sum += res[j].a[l] * res[j].a[l];
-        i += packets::kLanes;
-        continue;
-      }
-    if (!row_residuals(p.rows, model, s.loss, s.loss_scale, i, buf)) return false;
-    for (std::size_t j = 0; j < nc; ++j) sum += buf[j] * buf[j];
-    ++i;
-  }
-  sum_sq = sum;
-  return true;
-}
-
-bool sum_chunk_baseline(const LocalProblem& p, const ModelEvaluator<double>& model,
-                        const packets::PacketParams<0>* pp, const PacketRowCache* cache,
-                        std::size_t i0, std::size_t i1, double& sum_sq) {
-  return sum_chunk<false>(p, model, pp, cache, i0, i1, sum_sq);
-}
-
-__attribute__((target("avx2"))) bool sum_chunk_avx2(const LocalProblem& p,
-                                                    const ModelEvaluator<double>& model,
-                                                    const packets::PacketParams<0>* pp,
-                                                    const PacketRowCache* cache, std::size_t i0,
-                                                    std::size_t i1, double& sum_sq) {
-  return sum_chunk<true>(p, model, pp, cache, i0, i1, sum_sq);
-}
-
-// The packets the passes over p's rows take (packet_ahead within each chunk), with their
-// geometry.
-__attribute__((target("avx2"))) void cache_packets_avx2(const LocalProblem& p,
-                                                        PacketRowCache& cache) {
-  cache.packet_at.assign(p.rows.end - p.rows.begin, -1);
-  for (std::size_t c = 0; c < problem_chunks(p); ++c) {
-    const std::size_t i1 = chunk_end(p, c);
-    for (std::size_t i = chunk_begin(p, c); i < i1;) {
-      if (packet_ahead(*p.rows.data, i, i1)) {
-        cache.packet_at[i - p.rows.begin] = static_cast<std::int32_t>(cache.geometry.size());
-        cache.geometry.emplace_back();
-        packets::packet_geometry(p.rows, i, cache.geometry.back());
-        i += packets::kLanes;
-      } else {
-        ++i;
-      }
-    }
-  }
-}
-
 // Sum of squared residuals over all rows in plain doubles; +inf if any is not finite.
 double sum_of_squares(const LocalProblem& p, const ParamVector& x,
                       const PacketRowCache* cache = nullptr) {
   const FitSettings& s = *p.settings;
   const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(p, x, false),
                                      p.quadrature);
-  const auto pp = packet_params_for<0>(s, x.data());
-  const auto chunk_sum = packets::avx2_available() ? sum_chunk_avx2 : sum_chunk_baseline;
+  const ChunkKernels<0>& kernels = chunk_kernels_for<0>();
+  const PacketArgs<0> pp = kernels.packet_args(s, x.data());
   const std::size_t chunks = problem_chunks(p);
   std::vector<double> part(chunks, 0.0);
   std::vector<char> good(chunks, 1);
   for_each_chunk(chunks, p.threads, [&](std::size_t c) {
-    if (!chunk_sum(p, model, pp ? &*pp : nullptr, cache, chunk_begin(p, c), chunk_end(p, c),
-                   part[c]))
-      good[c] = 0;
+    if (!kernels.sum(p, model, pp, cache, chunk_begin(p, c), chunk_end(p, c), part[c])) good[c] = 0;
   });
   double total = 0.0;
   for (std::size_t c = 0; c < chunks; ++c) {
@@ -180,116 +58,6 @@ double sum_of_squares(const LocalProblem& p, const ParamVector& x,
     total += part[c];
   }
   return total;
-}
-
-// The Gram matrix of [J r] of rows [i0, i1) added to g, their squared residuals to sum_sq:
-// four rows at a time where packet_ahead holds and pp is given (aligned_row_packets.hpp), one at
-// a time otherwise. False if a residual or derivative is not finite.
-template <int N, bool kPackets>
-FRICTIONID_PACKET_INLINE bool gram_chunk(const LocalProblem& p,
-                                         const ModelEvaluator<ceres::Jet<double, N>>& model,
-                                         const packets::PacketParams<N>* pp, std::size_t i0,
-                                         std::size_t i1, Eigen::Matrix<double, N + 1, N + 1>& g,
-                                         double& sum_sq) {
-  using packets::Lanes;
-  const FitSettings& s = *p.settings;
-  const Dataset& d = *p.rows.data;
-  const std::size_t nc = p.rows.channels.size();
-  constexpr int kLower = (N + 1) * (N + 2) / 2;
-  Lanes lower[kLower];
-  for (auto& x : lower) x = packets::broadcast(0.0);
-  ceres::Jet<double, N> buf[kChannelCount];
-  Eigen::Matrix<double, N + 1, 1> v;
-  double sum = 0.0;
-  for (std::size_t i = i0; i < i1;) {
-    if constexpr (kPackets)
-      if (pp && packet_ahead(d, i, i1)) {
-        if (!packets::packet_rows(p.rows, *pp, i, lower, sum)) return false;
-        i += packets::kLanes;
-        continue;
-      }
-    if (!row_residuals(p.rows, model, s.loss, s.loss_scale, i, buf)) return false;
-    for (std::size_t j = 0; j < nc; ++j) {
-      v.template head<N>() = buf[j].v;
-      v[N] = buf[j].a;
-      g.noalias() += v * v.transpose();
-      sum += buf[j].a * buf[j].a;
-    }
-    ++i;
-  }
-  int k = 0;
-  for (int x = 0; x <= N; ++x)
-    for (int y = 0; y <= x; ++y, ++k) {
-      const double t = (lower[k][0] + lower[k][1]) + (lower[k][2] + lower[k][3]);
-      g(x, y) += t;
-      if (x != y) g(y, x) += t;
-    }
-  sum_sq = sum;
-  return true;
-}
-
-template <int N>
-bool gram_chunk_baseline(const LocalProblem& p, const ModelEvaluator<ceres::Jet<double, N>>& model,
-                         const packets::PacketParams<N>* pp, std::size_t i0, std::size_t i1,
-                         Eigen::Matrix<double, N + 1, N + 1>& g, double& sum_sq) {
-  return gram_chunk<N, false>(p, model, pp, i0, i1, g, sum_sq);
-}
-
-template <int N>
-__attribute__((target("avx2"))) bool gram_chunk_avx2(
-    const LocalProblem& p, const ModelEvaluator<ceres::Jet<double, N>>& model,
-    const packets::PacketParams<N>* pp, std::size_t i0, std::size_t i1,
-    Eigen::Matrix<double, N + 1, N + 1>& g, double& sum_sq) {
-  return gram_chunk<N, true>(p, model, pp, i0, i1, g, sum_sq);
-}
-
-// The residual rows [J r] of rows [i0, i1) into b (a row per residual, channels in order) and
-// their squared residuals summed into sum_sq: four rows at a time where packet_ahead holds and
-// pp is given. False if a residual or derivative is not finite.
-template <int N, bool kPackets>
-FRICTIONID_PACKET_INLINE bool fill_rows(const LocalProblem& p,
-                                        const ModelEvaluator<ceres::Jet<double, N>>& model,
-                                        const packets::PacketParams<N>* pp, std::size_t i0,
-                                        std::size_t i1,
-                                        Eigen::Matrix<double, Eigen::Dynamic, N + 1>& b,
-                                        double& sum_sq) {
-  const FitSettings& s = *p.settings;
-  const std::size_t nc = p.rows.channels.size();
-  ceres::Jet<double, N> buf[kChannelCount];
-  Eigen::Index row = 0;
-  double sum = 0.0;  // a local: sum_sq may share a cache line with another thread's
-  for (std::size_t i = i0; i < i1;) {
-    if constexpr (kPackets)
-      if (pp && packet_ahead(*p.rows.data, i, i1)) {
-        packets::Dual<N> res[kChannelCount];
-        if (!packets::packet_residuals(p.rows, *pp, i, res)) return false;
-        for (int l = 0; l < packets::kLanes; ++l)
-          for (std::size_t j = 0; j < nc; ++j, ++row) {
-            for (int k = 0; k < N; ++k) b(row, k) = res[j].v[k][l];
-            b(row, N) = res[j].a[l];
-            sum += res[j].a[l] * res[j].a[l];
-          }
-        i += packets::kLanes;
-        continue;
-      }
-    if (!row_residuals(p.rows, model, s.loss, s.loss_scale, i, buf)) return false;
-    for (std::size_t j = 0; j < nc; ++j, ++row) {
-      b.template leftCols<N>().row(row) = buf[j].v.transpose();
-      b(row, N) = buf[j].a;
-      sum += buf[j].a * buf[j].a;
-    }
-    ++i;
-  }
-  sum_sq = sum;
-  return true;
-}
-
-template <int N>
-__attribute__((target("avx2"))) bool fill_rows_avx2(
-    const LocalProblem& p, const ModelEvaluator<ceres::Jet<double, N>>& model,
-    const packets::PacketParams<N>* pp, std::size_t i0, std::size_t i1,
-    Eigen::Matrix<double, Eigen::Dynamic, N + 1>& b, double& sum_sq) {
-  return fill_rows<N, true>(p, model, pp, i0, i1, b, sum_sq);
 }
 
 // Autodiff passes with Jets as wide as the free parameters.
@@ -314,13 +82,11 @@ struct JetPasses {
   }
 
   // Fills b with the chunk's rows; false if a residual or derivative is not finite.
-  // (Rows of slip along x four at a time where pp is given: fill_rows.)
-  static bool fill(const LocalProblem& p, const ModelEvaluator<Jet>& model,
-                   const packets::PacketParams<N>* pp, std::size_t c, Block& b, double& sum_sq) {
+  static bool fill(const LocalProblem& p, const ModelEvaluator<Jet>& model, const PacketArgs<N>& pp,
+                   std::size_t c, Block& b, double& sum_sq) {
     const std::size_t i0 = chunk_begin(p, c), i1 = chunk_end(p, c);
     b.resize(static_cast<Eigen::Index>((i1 - i0) * p.rows.channels.size()), N + 1);
-    return pp ? fill_rows_avx2<N>(p, model, pp, i0, i1, b, sum_sq)
-              : fill_rows<N, false>(p, model, nullptr, i0, i1, b, sum_sq);
+    return chunk_kernels_for<N>().fill(p, model, pp, i0, i1, b, sum_sq);
   }
 
   // One autodiff pass at x: reduce(c, b) turns chunk c's rows b into the chunk's result;
@@ -332,13 +98,13 @@ struct JetPasses {
     const auto pj = seeded(p, x);
     const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true),
                                     p.quadrature);
-    const auto pp = packet_params_for<N>(s, pj.data());
+    const PacketArgs<N> pp = chunk_kernels_for<N>().packet_args(s, pj.data());
     const std::size_t chunks = problem_chunks(p);
     sum_sq.assign(chunks, 0.0);
     std::vector<char> good(chunks, 1);
     for_each_chunk(chunks, p.threads, [&](std::size_t c) {
       thread_local Block b;
-      if (fill(p, model, pp ? &*pp : nullptr, c, b, sum_sq[c]))
+      if (fill(p, model, pp, c, b, sum_sq[c]))
         reduce(c, b);
       else
         good[c] = 0;
@@ -346,8 +112,7 @@ struct JetPasses {
     return std::all_of(good.begin(), good.end(), [](char g) { return g != 0; });
   }
 
-  // The Gram matrix of [J r] summed as the residuals come (gram_chunk), with no m x (k+1) block
-  // in between; rows of slip along x four at a time through the packet pass.
+  // The Gram matrix of [J r] summed as the residuals come, with no m x (k+1) block in between.
   static bool normal_equations(const LocalProblem& p, const ParamVector& x, NormalEquations& ne) {
     const FitSettings& s = *p.settings;
     const auto pj = seeded(p, x);
@@ -356,14 +121,12 @@ struct JetPasses {
     const std::size_t chunks = problem_chunks(p);
     std::vector<Gram> gram(chunks);
     std::vector<char> good(chunks, 1);
-    // Rows of slip along x go four at a time through the packet pass where it applies.
-    const auto pp = packet_params_for<N>(s, pj.data());
-    const auto chunk_gram = packets::avx2_available() ? gram_chunk_avx2<N> : gram_chunk_baseline<N>;
+    const ChunkKernels<N>& kernels = chunk_kernels_for<N>();
+    const PacketArgs<N> pp = kernels.packet_args(s, pj.data());
     std::vector<double> sum_sq(chunks, 0.0);
     for_each_chunk(chunks, p.threads, [&](std::size_t c) {
       Gram g = Gram::Zero();
-      if (!chunk_gram(p, model, pp ? &*pp : nullptr, chunk_begin(p, c), chunk_end(p, c), g,
-                      sum_sq[c]))
+      if (!kernels.gram(p, model, pp, chunk_begin(p, c), chunk_end(p, c), g, sum_sq[c]))
         good[c] = 0;
       else
         gram[c] = g;
@@ -570,18 +333,19 @@ std::shared_ptr<const model::RingIntegralTable> pass_table(const LocalProblem& p
 }
 
 void allow_row_packets(bool allow) {
-  packets::row_packets_allowed().store(allow, std::memory_order_relaxed);
+  row_packets_allowed().store(allow, std::memory_order_relaxed);
+}
+
+bool row_packets_available() {
+  return chunk_kernels::avx2_kernels();
 }
 
 double problem_cost(const LocalProblem& p, const ParamVector& x) {
   return 0.5 * sum_of_squares(p, x);
 }
 
-RepeatedCost::RepeatedCost(const LocalProblem& p) : p_(p) {
-  if (!packets_apply(*p.settings)) return;
-  cache_ = std::make_unique<PacketRowCache>();
-  cache_packets_avx2(p, *cache_);
-}
+RepeatedCost::RepeatedCost(const LocalProblem& p)
+    : p_(p), cache_(chunk_kernels_for<0>().cache(p)) {}
 
 RepeatedCost::~RepeatedCost() = default;
 

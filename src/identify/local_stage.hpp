@@ -74,9 +74,13 @@ class RepeatedCost {
 };
 
 // Whether the passes of the closed-form models may take rows of slip along x four at a time
-// where the processor has AVX2 (aligned_row_packets.hpp); on unless turned off. Off: every row
-// one at a time, the same costs to the bit. Process-wide; for tests and comparisons.
+// where the processor has AVX2 (chunk_kernels.hpp); on unless turned off. Off: every row one at
+// a time, the same costs to the bit. Process-wide; for tests and comparisons.
 void allow_row_packets(bool allow);
+
+// Whether this build and this processor have the packet pass at all: x86-64 with AVX2, and not
+// a FRICTIONID_PORTABLE build.
+bool row_packets_available();
 
 // J^T J, J^T r and r^T r over all rows at x (J with respect to the free parameters): one
 // autodiff pass, the work of one Jacobian evaluation of the local stage. False where the model

@@ -82,6 +82,99 @@ ApproximantProducts<T> approximant_products(const ApproximantParams<T>& p,
   return {p.f * p.kappa * p.h, (T(1) + p.kappa) * (0.5 * shape.mu_M) * p.f};
 }
 
+// What the stand-ins t, p_hat and (slip along x) g_hat need of a row's eps, as factors:
+//   t = f_t/sqrt(y_t0 + a y_t1), p_hat's y_p from y_p0 + b y_p1, g_hat = g_g/sqrt(g_e + m g_f).
+// For large eps the forms are divided through by eps; q = 1/eps stays a plain number (0 for pure
+// sliding), because sqrt of a constant-zero Jet has a NaN derivative. D is a double for one row
+// or a vector of doubles for several (the packet pass of src/identify/aligned_row_packets.hpp):
+// the same expressions give each lane the bits of its row.
+template <typename D>
+struct EpsFactors {
+  D e2, q, inv2;          // eps^2; 1/eps and 1/eps^2 for eps > 1, else 0
+  D y_t0, y_t1, f_t;      // t = eps/sqrt(eps^2 + a)
+  D y_p0, y_p1;           // (1 + b eps^2) of p_hat
+  D f_seed, f_corrected;  // p_hat's factor: seed eps, corrected 1 (each over eps for large)
+  D g_e, g_f, g_g;        // g_hat at alpha = 0: 1/sqrt(1 + m eps^2)
+};
+
+template <typename D>
+FRICTIONID_MODEL_INLINE EpsFactors<D> eps_factors(const D& eps, const D& inv_eps) {
+  EpsFactors<D> f;
+  const auto small = eps <= 1.0;
+  f.e2 = eps * eps;
+  f.q = small ? 0.0 : inv_eps;
+  f.inv2 = f.q * f.q;
+  f.y_t0 = small ? f.e2 : 1.0;
+  f.y_t1 = small ? 1.0 : f.inv2;
+  f.f_t = small ? eps : 1.0;
+  f.y_p0 = small ? 1.0 : f.inv2;
+  f.y_p1 = small ? f.e2 : 1.0;
+  f.f_seed = small ? eps : f.q;
+  f.f_corrected = small ? 1.0 : f.q;
+  f.g_e = small ? 1.0 : f.inv2;
+  f.g_f = small ? f.e2 : 1.0;
+  f.g_g = small ? 1.0 : f.q;
+  return f;
+}
+
+// y_t of t = f_t/sqrt(y_t).
+template <typename T, typename D>
+FRICTIONID_MODEL_INLINE T stand_in_y_t(const ApproximantParams<T>& p, const EpsFactors<D>& f) {
+  return affine(f.y_t0, p.a, f.y_t1);
+}
+
+// p_hat: seed eps/sqrt((1 + b eps^2)(eps^2 + a)); corrected p0/sqrt(1 + b~ eps^2).
+template <typename T, typename D>
+FRICTIONID_MODEL_INLINE T stand_in_p_hat(ApproximantForm form, const ApproximantParams<T>& p,
+                                         const T& y_t, const EpsFactors<D>& f) {
+  const T c_p = affine(f.y_p0, p.b, f.y_p1);
+  // p_hat = f_p/sqrt(y_p); the seed's f_p is a plain number, the corrected form's p0 a parameter.
+  if (form == ApproximantForm::Seed) return inv_sqrt(c_p * y_t) * f.f_seed;
+  return p.p0 * (inv_sqrt(c_p) * f.f_corrected);
+}
+
+// A row of slip along x (or pure spin), apart from its eps: the sign factors times N and R.
+template <typename D>
+struct AxisRow {
+  D ca_n;  // f_t cos(alpha) N
+  D s_n;   // spin sign N
+  D s_nr;  // spin sign N R
+  D nr;    // N R
+};
+
+template <typename D>
+FRICTIONID_MODEL_INLINE AxisRow<D> axis_row(const EpsFactors<D>& f, const D& cos_alpha,
+                                            const D& spin_sign, const D& N, const D& R) {
+  return {f.f_t * cos_alpha * N, spin_sign * N, spin_sign * N * R, N * R};
+}
+
+// The rolling-resistance moment M_roll = h N R rho_roll, every slip direction.
+template <typename T, typename D>
+FRICTIONID_MODEL_INLINE T rolling_moment(const T& h, const D& nr, double rho_roll) {
+  return h * (nr * rho_roll);
+}
+
+template <typename T>
+struct AxisResultants {
+  T T_x, T_y, M_z;
+};
+
+// Slip along the x axis (cos(alpha) = +-1) or pure spin: d11 = 1, d12 = 0, d22 = kappa,
+// m(alpha) = m and every tilt stand-in but p_hat drops out; the common case of test-rig data,
+// and the seed's three published formulas. F0 = f N and M0 = spin N R.
+template <typename T, typename D>
+FRICTIONID_MODEL_INLINE AxisResultants<T> axis_resultants(ApproximantForm form,
+                                                          const ApproximantParams<T>& p,
+                                                          const ApproximantProducts<T>& pp,
+                                                          const EpsFactors<D>& f,
+                                                          const AxisRow<D>& row) {
+  const T y_t = stand_in_y_t(p, f);
+  const T p_hat = stand_in_p_hat(form, p, y_t, f);
+  const T t = inv_sqrt(y_t) * row.ca_n;
+  const T g_aligned = inv_sqrt(affine(f.g_e, p.m, f.g_f)) * f.g_g;
+  return {p.f * t, pp.fkh * (p_hat * row.s_n), pp.spin * (g_aligned * row.s_nr)};
+}
+
 // The shape constants are plain doubles: the pressure law of a closed-form fit is fixed, so
 // they never carry derivatives (and autodiff need not pay for them).
 template <typename T>
@@ -90,39 +183,25 @@ Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantPara
                                      const ApproximantShape<double>& shape, const Kinematics& k) {
   const SlipGeometry g = slip_geometry(k);
   Resultants<T> r;
-  r.M_roll = p.h * (k.N * k.R * shape.rho_roll);
+  r.M_roll = rolling_moment(p.h, k.N * k.R, shape.rho_roll);
   r.N = T(k.N);
   if (g.at_rest) {
     r.T_x = r.T_y = r.M_z = T(0);
     return r;
   }
   const double eps = g.eps, ca = g.cos_alpha, sa = g.sin_alpha, s = g.spin_sign;
-  const bool small = eps <= 1.0;
-  // Every stand-in is a factor times 1/sqrt(y). For large eps the forms are divided through by
-  // eps; q = 1/eps stays a plain double (0 for pure sliding), because sqrt of a constant-zero
-  // Jet has a NaN derivative.
-  const double e2 = eps * eps, q = small ? 0.0 : g.inv_eps, inv2 = q * q;
-  // t = eps/sqrt(eps^2 + a)
-  const T y_t = small ? T(e2) + p.a : T(1) + p.a * inv2;
-  const double f_t = small ? eps : 1.0;
-  // p_hat: seed eps/sqrt((1 + b eps^2)(eps^2 + a)); corrected p0/sqrt(1 + b~ eps^2)
-  const bool seed = form == ApproximantForm::Seed;
-  const T y_p = seed ? (small ? (T(1) + p.b * e2) * y_t : (T(inv2) + p.b) * y_t)
-                     : (small ? T(1) + p.b * e2 : T(inv2) + p.b);
-  // p_hat = f_p/sqrt(y_p); the seed's f_p is a plain number, the corrected form's p0 a parameter.
-  const T p_hat =
-      seed ? inv_sqrt(y_p) * (small ? eps : q) : p.p0 * (inv_sqrt(y_p) * (small ? 1.0 : q));
+  const EpsFactors<double> ef = eps_factors(eps, g.inv_eps);
   if (sa == 0.0) {
-    // Slip along the x axis (ca = +-1) or pure spin: d11 = 1, d12 = 0, d22 = kappa, m(alpha) = m
-    // and every tilt stand-in but p_hat drops out; the common case of test-rig data, and the
-    // seed's three published formulas. F0 = f N and M0 = spin N R.
-    const T t = inv_sqrt(y_t) * (f_t * ca * k.N);
-    const T g_aligned = small ? inv_sqrt(T(1) + p.m * e2) : q * inv_sqrt(T(inv2) + p.m);
-    r.T_x = p.f * t;
-    r.T_y = pp.fkh * (p_hat * (s * k.N));
-    r.M_z = pp.spin * (g_aligned * (s * k.N * k.R));
+    const AxisResultants<T> a = axis_resultants(form, p, pp, ef, axis_row(ef, ca, s, k.N, k.R));
+    r.T_x = a.T_x;
+    r.T_y = a.T_y;
+    r.M_z = a.M_z;
     return r;
   }
+  const bool small = eps <= 1.0;
+  const double e2 = ef.e2, q = ef.q, inv2 = ef.inv2, f_t = ef.f_t;
+  const T y_t = stand_in_y_t(p, ef);
+  const T p_hat = stand_in_p_hat(form, p, y_t, ef);
   const T F0 = p.f * k.N;
   const T M0 = pp.spin * (k.N * k.R);
   const T d11 = T(ca * ca) + p.kappa * (sa * sa);

@@ -10,6 +10,16 @@
 #include <type_traits>
 #include <utility>
 
+// The few generic steps that the packet pass of src/identify instantiates with vectors of
+// doubles (one row per lane) are forced inline: inside its functions compiled for AVX2 they
+// then use 256-bit registers, where an out-of-line copy would be compiled for the baseline
+// instruction set and pass its vectors through memory.
+#if defined(__GNUC__)
+#define FRICTIONID_MODEL_INLINE inline __attribute__((always_inline))
+#else
+#define FRICTIONID_MODEL_INLINE inline
+#endif
+
 namespace frictionid::model {
 
 template <typename T, typename = void>
@@ -39,6 +49,30 @@ T inv_sqrt(const T& x) {
   } else {
     using std::sqrt;
     return T(1) / sqrt(x);
+  }
+}
+
+// c + f s for a plain number (or a vector of them) c and s: the models' "T(c) + f * s", which
+// for a dual number costs one product per derivative and no addition of zeros.
+template <typename T, typename D>
+FRICTIONID_MODEL_INLINE T affine(const D& c, const T& f, const D& s) {
+  if constexpr (is_dual_number<T>::value) {
+    T r = f * s;
+    r.a = c + r.a;
+    return r;
+  } else {
+    return c + f * s;
+  }
+}
+
+// |x| for a double, or for each lane of a vector of doubles (GCC/Clang vector extension): the
+// sign cleared, -0 included (x + 0 is +0 for either zero).
+template <typename D>
+FRICTIONID_MODEL_INLINE D magnitude(const D& x) {
+  if constexpr (std::is_floating_point_v<D>) {
+    return std::fabs(x);
+  } else {
+    return x < 0.0 ? -x : x + 0.0;
   }
 }
 
