@@ -149,8 +149,16 @@ def plan_frame(frame: Any, options: "_frictionid.FitRequest", group_columns: Lis
     for i, key in enumerate(zip(*texts)):
         groups.setdefault(key, []).append(i)
     runs = []
+    owner: Dict[str, Tuple[str, ...]] = {}
     for key, rows in groups.items():
         label = "_".join(key)
+        if label in owner:  # ("1_2", "3") and ("1", "2_3"): one label, two groups
+            raise _frictionid.InputError(
+                f"group_by: the groups {_group_name(group_columns, owner[label])} and "
+                f"{_group_name(group_columns, key)} would share the label '{label}' (the "
+                f"values joined by '_'); expected group values whose joined labels differ, "
+                f"as frictionid batch --group-by requires")
+        owner[label] = key
         spec = _frictionid.table_run(label, options, list(zip(group_columns, key)))
         part = frame.iloc[rows]
         runs.append(Run(label, "", spec, _canonical_columns(part, columns)))
@@ -180,7 +188,21 @@ def run_on_cluster(runs: List[Run], client: Optional[Any] = None, *, threads: in
                       key=f"frictionid-fit-{k}-{run.directory}-{batch}",
                       retries=retries, pure=False)
         for k, (run, data) in enumerate(zip(runs, columns))]
-    results = client.gather(futures)
+    # Every run ends as a row: a task that still raised after its retries (or whose workers
+    # kept dying, KilledWorker) is a failed row with the error, as a failed fit is in
+    # `frictionid batch`; the other runs' results are kept.
+    from distributed import wait
+
+    wait(futures)
+    results = []
+    for run, future in zip(runs, futures):
+        if future.status == "finished":
+            results.append(future.result())
+            continue
+        error = future.exception() if future.status == "error" else None
+        why = (f"the task failed on the cluster: {type(error).__name__}: {error}"
+               if error is not None else f"the task ended as '{future.status}' on the cluster")
+        results.append((_frictionid.failed_batch_run(run.spec, why), None))
     return Outcome({run.label: row for run, (row, _) in zip(runs, results)},
                    {run.label: report for run, (_, report) in zip(runs, results)})
 
@@ -254,13 +276,10 @@ def _shortest(x: float) -> str:
     return repr(x)
 
 
-def _canonical_columns(part: Any, columns: Optional[Dict[str, str]]) -> Dict[str, Any]:
-    import numpy as np
+def _group_name(columns: List[str], values: Tuple[str, ...]) -> str:
+    return "(" + ", ".join(f"{c}={v!r}" for c, v in zip(columns, values)) + ")"
 
-    header_of = _data.column_map(columns)
-    out = {}
-    for name in _data.COLUMNS:
-        key = header_of.get(name, name)
-        if key in part.columns:
-            out[name] = np.ascontiguousarray(np.asarray(part[key], dtype=np.float64))
-    return out
+
+def _canonical_columns(part: Any, columns: Optional[Dict[str, str]]) -> Dict[str, Any]:
+    """A group's canonical columns, read as fit() reads a frame (pd.NA, refused dtypes)."""
+    return _data.canonical_arrays(part, _data.column_map(columns), "DataFrame")
