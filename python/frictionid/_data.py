@@ -27,7 +27,7 @@ class Loaded(NamedTuple):
     """A Dataset and the index of the frame it came from (None: rows by position)."""
 
     dataset: "_frictionid.Dataset"
-    index: Optional["pandas.Index"]
+    row_index: Optional["pandas.Index"]
 
 
 def column_map(columns: Optional[Mapping[str, str]]) -> Dict[str, str]:
@@ -58,7 +58,7 @@ def load_indexed(data: DataLike, columns: Optional[Mapping[str, str]] = None) ->
     source = "DataFrame" if is_frame else "dict"
     header_of = column_map(columns)
     arrays = canonical_arrays(data, header_of, source)
-    index = data.index if is_frame else None
+    index = getattr(data, "index") if is_frame else None
     try:
         return Loaded(_frictionid.dataset_from_columns(arrays, source), index)
     except _frictionid.InputError:

@@ -104,7 +104,7 @@ def fit(
                 global_search=global_search, global_algorithm=global_algorithm,
                 global_evaluations=global_evaluations, global_subsample=global_subsample)
     output = _frictionid.fit(loaded.dataset, o, cancel, progress)
-    return FitResult(output, model=model, pressure=pressure, index=loaded.index, request=o)
+    return FitResult(output, model=model, pressure=pressure, index=loaded.row_index, request=o)
 
 
 def options(

@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 import numbers
 import operator
-from typing import Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _frictionid
 
@@ -73,11 +73,11 @@ def loss(value: Union[str, Sequence]) -> str:
     """"huber:3" or ("huber", 3) -> "huber:3.0" (--loss: a kind and its scale)."""
     if isinstance(value, str):
         return value
-    name, scale = value
+    name, scale = value[0], value[1]
     return f"{name}:{_float('--loss', str(name), scale)!r}"
 
 
-def whole_number(option: str, value: object, low: int, high: int) -> int:
+def whole_number(option: str, value: Any, low: int, high: int) -> int:
     """An int in [low, high], with the command line's message otherwise (no wrap, no clamp)."""
     if isinstance(value, bool):
         value = str(value)

@@ -76,7 +76,7 @@ class FitResult:
         self.params: Dict[str, float] = {n: e["value"] for n, e in p.items()}
         self.stderr: Dict[str, Optional[float]] = {n: e["stderr"] for n, e in p.items()}
         self.ci95: Dict[str, Optional[Tuple[float, float]]] = {
-            n: None if e["ci95"] is None else tuple(e["ci95"]) for n, e in p.items()}
+            n: None if e["ci95"] is None else (e["ci95"][0], e["ci95"][1]) for n, e in p.items()}
         self.statistics: Dict[str, Any] = self.report["statistics"]
         self.warnings: List[str] = list(self.report["warnings"])
         self.time_s: float = time_s

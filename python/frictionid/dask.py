@@ -21,9 +21,13 @@ import logging
 import math
 import os
 import uuid
-from typing import Any, Dict, Iterable, List, NamedTuple, Optional, Sequence, Tuple, Union
+from typing import (TYPE_CHECKING, Any, Dict, Iterable, List, NamedTuple, Optional, Sequence,
+                    Tuple, Union)
 
 from . import _data, _fit, _frictionid
+
+if TYPE_CHECKING:
+    import pandas
 
 Inputs = Union[str, "os.PathLike[str]", Iterable[Union[str, "os.PathLike[str]"]], Any]
 
@@ -61,7 +65,7 @@ def fit_many(
     retries: int = DEFAULT_RETRIES,
     n_workers: Optional[int] = None,
     **fit_options: Any,
-) -> "pandas.DataFrame":  # noqa: F821
+) -> "pandas.DataFrame":
     """Fit many runs on a Dask cluster into ``frictionid batch``'s summary table.
 
     Args:
@@ -220,7 +224,7 @@ def fit_run(spec: str, threads: int, with_report: bool,
     return _frictionid.fit_batch_run(spec, threads, with_report, data)
 
 
-def summary_frame(csv_text: str) -> "pandas.DataFrame":  # noqa: F821
+def summary_frame(csv_text: str) -> "pandas.DataFrame":
     """summary.csv's text as a DataFrame: numbers as float64 (read back bit-identical), labels
     and errors as text, empty cells as NaN."""
     import pandas as pd
