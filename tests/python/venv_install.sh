@@ -10,6 +10,11 @@ set -eu
 source_dir=$1
 build_dir=$2
 python=$3
+# Skipped (77) where Debian's venv, setuptools or wheel are not installed, saying so.
+if ! "$python" -c "import ensurepip, setuptools, wheel" 2>/dev/null; then
+  echo "skipped: needs python3-venv, python3-setuptools and python3-wheel" >&2
+  exit 77
+fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
