@@ -217,10 +217,18 @@ def fit_run(spec: str, threads: int, with_report: bool,
     and report.json as JSON text; a failure of the fit is a failed row, not an exception."""
     data = None
     if columns is not None:
+        arrays = {k: v for k, v in columns.items() if k != _INDEX}
         try:
-            data = _frictionid.dataset_from_columns(columns, "DataFrame")
+            data = _frictionid.dataset_from_columns(arrays, "DataFrame")
         except ValueError as e:
-            return _frictionid.failed_batch_run(spec, str(e)), None
+            error = str(e)
+            index = columns.get(_INDEX)
+            if index is not None and not _data._is_positional(index):
+                try:  # again, only to name the row by the frame's index label
+                    _frictionid.dataset_from_columns(arrays, "DataFrame", _data.row_labels(index))
+                except ValueError as labelled:
+                    error = str(labelled)
+            return _frictionid.failed_batch_run(spec, error), None
     return _frictionid.fit_batch_run(spec, threads, with_report, data)
 
 
@@ -284,6 +292,14 @@ def _group_name(columns: List[str], values: Tuple[str, ...]) -> str:
     return "(" + ", ".join(f"{c}={v!r}" for c, v in zip(columns, values)) + ")"
 
 
+# The key of a group's index among its columns: a rejected row is named by its label.
+_INDEX = "__index__"
+
+
 def _canonical_columns(part: Any, columns: Optional[Dict[str, str]]) -> Dict[str, Any]:
-    """A group's canonical columns, read as fit() reads a frame (pd.NA, refused dtypes)."""
-    return _data.canonical_arrays(part, _data.column_map(columns), "DataFrame")
+    """A group's canonical columns, read as fit() reads a frame (pd.NA, refused dtypes), and
+    its index."""
+    out: Dict[str, Any] = dict(_data.canonical_arrays(part, _data.column_map(columns),
+                                                      "DataFrame"))
+    out[_INDEX] = part.index
+    return out

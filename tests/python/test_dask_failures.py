@@ -89,3 +89,15 @@ def test_the_module_batch_writes_a_failed_row_and_exits_4_when_a_task_raises(
     assert list(summary["status"]) == ["ok", "failed"]
     assert "OSError: disk vanished" in summary.loc["load_3000", "error"]
     assert "run 'load_3000' failed" in capsys.readouterr().err
+
+
+def test_a_bad_row_of_a_dataframe_group_is_named_by_its_index_label(thread_client,
+                                                                    example_csv):
+    frame = pd.read_csv(example_csv, float_precision="round_trip").iloc[:300].copy()
+    frame.index = [f"m{i}" for i in range(len(frame))]
+    frame.loc["m123", "N"] = -np.inf
+    table = fit_many(frame, thread_client, group_by="N", **FIT).set_index("label")
+    failed = table[table["status"] == "failed"]
+    assert len(failed) == 1
+    assert "row with index 'm123'" in failed["error"].iloc[0]
+    assert (table["status"] == "ok").sum() == len(table) - 1
