@@ -101,7 +101,8 @@ class FitResult:
             out = self._output
             assert out is not None
             self._arrays = {"eps": out.eps, "fitted": dict(out.fitted), "sigma": dict(out.sigma),
-                            "data": dict(out.data.columns())}
+                            "data": dict(out.data.columns()), "source": out.data.source,
+                            "lines": out.data.lines}
         return self._arrays
 
     def _cpp_output(self) -> "_frictionid.FitOutput":
@@ -111,7 +112,10 @@ class FitResult:
             request = _frictionid.FitRequest()
             for name, value in self._request.items():
                 setattr(request, name, value)
-            data = _frictionid.dataset_from_columns(self._row_arrays()["data"], "DataFrame")
+            arrays = self._row_arrays()
+            # The file and its lines too: warnings name the line of a CSV row.
+            data = _frictionid.restore_dataset(arrays["data"], arrays["source"],
+                                               list(arrays["lines"]))
             self._output = _frictionid.fit(data, request)
         return self._output
 

@@ -74,6 +74,12 @@ void register_fit(py::module_& m) {
   py::class_<Dataset, std::shared_ptr<Dataset>>(m, "Dataset")
       .def_property_readonly("rows", &Dataset::rows)
       .def_readonly("source", &Dataset::source)
+      .def_property_readonly(
+          "lines",
+          [](const Dataset& d) {
+            return py::array_t<std::size_t>(static_cast<py::ssize_t>(d.line.size()), d.line.data());
+          },
+          "The file line of each row (empty for rows from memory): warnings name them.")
       .def("columns", &dataset_columns,
            "Canonical columns as float64 arrays (channels NaN where not measured).");
 
@@ -89,6 +95,16 @@ void register_fit(py::module_& m) {
         py::arg("row_labels") = std::vector<std::string>{},
         "row_labels: how messages name each row (a DataFrame's index labels); default the "
         "position.");
+  m.def(
+      "restore_dataset",
+      [](const py::dict& columns, const std::string& source,
+         const std::vector<std::size_t>& lines) {
+        auto d = from_columns(columns, source, {});
+        d->line = lines;
+        return d;
+      },
+      py::arg("columns"), py::arg("source"), py::arg("lines"),
+      "A dataset rebuilt from its columns, its source and file lines (an unpickled FitResult).");
   m.def(
       "misspelling_distance",
       [](const std::string& candidate, const std::string& target) -> py::object {

@@ -37,9 +37,22 @@ def test_an_unpickled_result_writes_the_same_report_files(result, tmp_path):
     written = result.write_report(tmp_path / "original")
     again = copy.write_report(tmp_path / "copy")  # fits the same rows again, once
     assert [p.split("/")[-1] for p in written] == [p.split("/")[-1] for p in again]
-    for name in ("report.json", "report.md"):
+    for name in ("report.json", "report.md", "report.html"):
         assert ((tmp_path / "original" / name).read_bytes()
-                == (tmp_path / "copy" / name).read_bytes())
+                == (tmp_path / "copy" / name).read_bytes()), name
+
+
+def test_an_unpickled_fit_of_a_file_writes_the_same_report_naming_its_lines(example_csv,
+                                                                             tmp_path):
+    # The example's outlier warnings name file lines: the copy keeps the rows' lines.
+    result = frictionid.fit(str(example_csv), model="seed", global_search=False)
+    assert any("at line " in w for w in result.warnings)
+    copy = pickle.loads(pickle.dumps(result))
+    result.write_report(tmp_path / "original")
+    copy.write_report(tmp_path / "copy")
+    for name in ("report.json", "report.md", "report.html"):
+        assert ((tmp_path / "original" / name).read_bytes()
+                == (tmp_path / "copy" / name).read_bytes()), name
 
 
 def _fit_in_child(rows):
