@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
-from typing import Iterable, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _data, _frictionid, _options
 from ._result import FitResult
+
+Bounds = Mapping[str, Tuple[Optional[float], Optional[float]]]
+Progress = Callable[[Dict[str, Any]], Any]
 
 MAX_SEED = 2**32 - 1  # as `frictionid fit --seed`: NLopt keeps 32 bits of a seed
 
@@ -16,11 +19,13 @@ def fit(
     pressure: str = "hertz",
     *,
     fix: Optional[Mapping[str, float]] = None,
-    bounds: Optional[Mapping[str, Tuple[float, float]]] = None,
+    bounds: Optional[Bounds] = None,
     start: Optional[Mapping[str, float]] = None,
     loss: Union[str, Sequence] = "none",
     channels: Optional[Union[str, Iterable[str]]] = None,
     noise_model: str = "auto",
+    intervals: str = "model",
+    bootstrap: int = 0,
     seed: int = 1,
     threads: int = 0,
     starts: int = 4,
@@ -29,6 +34,8 @@ def fit(
     global_evaluations: int = 3000,
     global_subsample: int = 400,
     columns: Optional[Mapping[str, str]] = None,
+    cancel: Optional[Any] = None,
+    progress: Optional[Progress] = None,
 ) -> FitResult:
     """Identify the parameters of ``model`` from steady-state measurements.
 
@@ -46,7 +53,10 @@ def fit(
             p0) or ``"exact"`` (f, kappa, h, and n with ``power:N``).
         pressure: ``uniform``, ``hertz``, ``parabolic``, ``power:N`` or ``table:FILE``.
         fix: parameters held at a value, ``{"kappa": 1.0}`` (``--fix kappa=1``).
-        bounds: parameter bounds, ``{"f": (0.1, 2)}`` (``--bounds f=0.1:2``).
+        bounds: parameter bounds, ``{"f": (0.1, 2)}`` (``--bounds f=0.1:2``). One side None
+            (or -inf as lower, +inf as upper) keeps the model's default bound on that side:
+            ``{"f": (None, 2)}`` lowers only the upper bound. The fit's bounds are always
+            finite.
         start: initial values, ``{"f": 0.9}`` (``--param f=0.9``).
         loss: ``"none"``, ``"huber:S"``, ``"cauchy:S"``, ``"soft_l1:S"`` or ``("huber", S)``.
         channels: the channels to fit, e.g. ``["T_x", "M_z"]``; default every measured one.
@@ -54,7 +64,10 @@ def fit(
             columns where given, else the variance function with the smallest BIC, estimated
             from the residuals), ``"constant"``, ``"relative"``, ``"affine"`` (that function for
             every channel) or ``"columns"`` (the sigma columns as given).
-        seed: seed of the global stage.
+        intervals: the interval reports show first (``--intervals``): ``"model"``,
+            ``"sandwich"`` or ``"profile"`` (``report["parameters"][p]["ci95_profile"]``).
+        bootstrap: wild bootstrap refits (``--bootstrap``), 0 to 100000, seeded by ``seed``.
+        seed: seed of the global stage, 0 to 2**32 - 1.
         threads: threads for the passes over the rows (0: every core); results do not depend
             on it.
         starts: local fits started from the global stage's best distinct points.
@@ -63,6 +76,12 @@ def fit(
         global_evaluations: objective budget of the global stage.
         global_subsample: rows the global stage sees.
         columns: renames, canonical name -> name in the data (``--columns``).
+        cancel: a :class:`CancelToken` (or any object with ``is_set()``, such as a
+            ``threading.Event``): once set, from any thread, the fit stops within about 50 ms
+            of solver work and raises :class:`FitCancelled`.
+        progress: called in the fitting thread, at most every 50 ms, with a dict ``stage``
+            (``"global search"`` or ``"local fit"``), ``done``, ``total``, ``start``,
+            ``starts``, ``cost``; an exception it raises stops the fit and is raised by fit().
 
     Returns:
         A :class:`FitResult`.
@@ -70,16 +89,22 @@ def fit(
     Raises:
         InputError: (a ``ValueError``) bad data or options, with the command line's message.
         FitError: the fit failed (no start gave a finite model, the solver failed).
-        KeyboardInterrupt: Ctrl-C; the fit stops within about 50 ms of solver work.
+        FitCancelled: (a FitError) the cancel token was set, or the interpreter is exiting.
+        KeyboardInterrupt: Ctrl-C in the main thread; the fit stops within about 50 ms of
+            solver work, and the next fit runs normally.
 
     The GIL is released while the fit runs: fits in several Python threads run in parallel.
+    Results keep a DataFrame's index: ``r.fitted``, ``r.residuals``, ``r.data`` and ``r.eps``
+    have the frame's row labels.
     """
-    dataset = _data.load(data, columns, threads)
+    loaded = _data.load_indexed(data, columns, threads)
     o = options(model, pressure, fix=fix, bounds=bounds, start=start, loss=loss,
-                channels=channels, noise_model=noise_model, seed=seed, threads=threads,
-                starts=starts, global_search=global_search, global_algorithm=global_algorithm,
+                channels=channels, noise_model=noise_model, intervals=intervals,
+                bootstrap=bootstrap, seed=seed, threads=threads, starts=starts,
+                global_search=global_search, global_algorithm=global_algorithm,
                 global_evaluations=global_evaluations, global_subsample=global_subsample)
-    return FitResult(_frictionid.fit(dataset, o), model=model, pressure=pressure)
+    output = _frictionid.fit(loaded.dataset, o, cancel, progress)
+    return FitResult(output, model=model, pressure=pressure, index=loaded.row_index, request=o)
 
 
 def options(
@@ -87,11 +112,13 @@ def options(
     pressure: str = "hertz",
     *,
     fix: Optional[Mapping[str, float]] = None,
-    bounds: Optional[Mapping[str, Tuple[float, float]]] = None,
+    bounds: Optional[Bounds] = None,
     start: Optional[Mapping[str, float]] = None,
     loss: Union[str, Sequence] = "none",
     channels: Optional[Union[str, Iterable[str]]] = None,
     noise_model: str = "auto",
+    intervals: str = "model",
+    bootstrap: int = 0,
     seed: int = 1,
     threads: int = 0,
     starts: int = 4,
@@ -107,11 +134,13 @@ def options(
     o.model = model
     o.pressure = pressure
     o.fix = _options.values("--fix", fix)
-    o.bounds = _options.bounds(bounds)
+    o.bounds = _options.bounds(bounds, o.default_bounds)
     o.start = _options.values("--param", start)
     o.loss = _options.loss(loss)
     o.channels = _options.names(channels)
     o.noise_model = noise_model
+    o.intervals = intervals
+    o.bootstrap = _options.whole_number("--bootstrap", bootstrap, 0, 100000)
     o.seed = _options.whole_number("--seed", seed, 0, MAX_SEED)
     o.threads = threads
     o.starts = starts

@@ -4,9 +4,10 @@ own code, so the messages are the same."""
 
 from __future__ import annotations
 
+import math
 import numbers
 import operator
-from typing import Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _frictionid
 
@@ -25,17 +26,37 @@ def values(option: str, given: Optional[Mapping[str, Number]]) -> Dict[str, floa
     return {str(name): _float(option, name, v) for name, v in (given or {}).items()}
 
 
-def bounds(given: Optional[Mapping[str, Tuple[Optional[Number], Optional[Number]]]]
+def bounds(given: Optional[Mapping[str, Tuple[Optional[Number], Optional[Number]]]],
+           defaults: Optional[Callable[[], Mapping[str, Tuple[float, float]]]] = None
            ) -> Dict[str, Tuple[float, float]]:
-    """{"f": (0.1, 2)} -> {"f": (0.1, 2.0)} (--bounds)."""
+    """{"f": (0.1, 2)} -> {"f": (0.1, 2.0)} (--bounds).
+
+    One-sided bounds: None, -inf (lower) or +inf (upper) keeps the default bound of that side
+    (the model's, as without bounds=; ``defaults()`` gives them). The fit itself needs finite
+    bounds, so an open side means "as by default", never "unbounded"."""
     out = {}
+    default: Optional[Mapping[str, Tuple[float, float]]] = None
     for name, pair in (given or {}).items():
         try:
             lower, upper = pair
         except (TypeError, ValueError):
             raise _frictionid.InputError(
                 f"--bounds: {name} needs a (lower, upper) pair, not {pair!r}") from None
-        out[str(name)] = (_float("--bounds", name, lower), _float("--bounds", name, upper))
+        sides = []
+        for side, value, open_value in (("lower", lower, -math.inf), ("upper", upper, math.inf)):
+            if value is not None:
+                value = _float("--bounds", name, value)
+            if value is None or (value == open_value and defaults is not None):
+                if default is None:
+                    default = defaults() if defaults is not None else {}
+                if str(name) not in default:
+                    raise _frictionid.InputError(
+                        f"--bounds: {name} has no default {side} bound to keep (None or an "
+                        f"infinite {side} bound keeps the default); expected a parameter of "
+                        f"the model: {', '.join(default)}")
+                value = default[str(name)][0 if side == "lower" else 1]
+            sides.append(value)
+        out[str(name)] = (sides[0], sides[1])
     return out
 
 
@@ -52,11 +73,11 @@ def loss(value: Union[str, Sequence]) -> str:
     """"huber:3" or ("huber", 3) -> "huber:3.0" (--loss: a kind and its scale)."""
     if isinstance(value, str):
         return value
-    name, scale = value
+    name, scale = value[0], value[1]
     return f"{name}:{_float('--loss', str(name), scale)!r}"
 
 
-def whole_number(option: str, value: object, low: int, high: int) -> int:
+def whole_number(option: str, value: Any, low: int, high: int) -> int:
     """An int in [low, high], with the command line's message otherwise (no wrap, no clamp)."""
     if isinstance(value, bool):
         value = str(value)

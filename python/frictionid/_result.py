@@ -18,6 +18,13 @@ def _fmt(x: Optional[float], digits: int = 8) -> str:
     return "None" if x is None else f"{x:.{digits}g}"
 
 
+_REQUEST_FIELDS = (
+    "model", "pressure", "fix", "bounds", "start", "loss", "channels", "intervals",
+    "bootstrap", "noise_model", "starts", "seed", "global_evaluations", "global_subsample",
+    "no_global", "global_algorithm", "threads",
+)
+
+
 class FitResult:
     """The result of :func:`frictionid.fit`.
 
@@ -31,15 +38,36 @@ class FitResult:
         statistics: report["statistics"]: cost, chi2, reduced_chi2, aic, bic, dof, rmse, r2...
         warnings: list of warning sentences (parameters not determined, at bounds, ...).
         model, pressure: as passed to fit; rows: rows fitted.
-        eps: per row, v/(|omega| R) (inf where omega = 0).
+        index: the row labels of the fitted DataFrame (a RangeIndex for a file or a dict).
+        eps: pandas Series, per row, v/(|omega| R) (inf where omega = 0).
         fitted: pandas DataFrame of the fitted channels' predictions, one row per data row.
+        residuals: measured - fitted per fitted channel (NaN where a row does not measure it).
+        sigma: the sigma the fit divided each residual by (sigma column, estimated noise model
+            or the channel's scale).
+        whitened_residuals: residuals / sigma, the residuals the fit minimised (before a
+            robust loss).
         data: pandas DataFrame of the rows fitted (canonical columns).
+
+    Every per-row table has the fitted frame's index, so ``df["fit"] = r.fitted["T_x"]`` lines
+    up row by row. A FitResult pickles (multiprocessing, joblib, Dask): the copy holds the
+    report and the per-row arrays; only :meth:`write_report` needs the C++ result, which an
+    unpickled copy recomputes once by fitting the same rows with the same options again.
     """
 
-    def __init__(self, output: "_frictionid.FitOutput", model: str, pressure: str) -> None:
+    def __init__(self, output: "Optional[_frictionid.FitOutput]", model: str, pressure: str,
+                 index: Any = None, request: "Optional[_frictionid.FitRequest]" = None
+                 ) -> None:
         self._output = output
         self._pressure_spec = pressure
-        self.report: Dict[str, Any] = output.report()
+        self._index = index
+        self._request: Dict[str, Any] = (
+            {} if request is None else {f: getattr(request, f) for f in _REQUEST_FIELDS})
+        self._arrays: Optional[Dict[str, Any]] = None
+        if output is not None:
+            self._init_from_report(output.report(), output.time_s)
+
+    def _init_from_report(self, report: Dict[str, Any], time_s: float) -> None:
+        self.report: Dict[str, Any] = report
         self.model: str = self.report["model"]
         self.pressure: str = self.report["pressure"]
         self.rows: int = self.report["rows"]
@@ -48,10 +76,48 @@ class FitResult:
         self.params: Dict[str, float] = {n: e["value"] for n, e in p.items()}
         self.stderr: Dict[str, Optional[float]] = {n: e["stderr"] for n, e in p.items()}
         self.ci95: Dict[str, Optional[Tuple[float, float]]] = {
-            n: None if e["ci95"] is None else tuple(e["ci95"]) for n, e in p.items()}
+            n: None if e["ci95"] is None else (e["ci95"][0], e["ci95"][1]) for n, e in p.items()}
         self.statistics: Dict[str, Any] = self.report["statistics"]
         self.warnings: List[str] = list(self.report["warnings"])
-        self.time_s: float = output.time_s
+        self.time_s: float = time_s
+
+    # -- pickling ---------------------------------------------------------------------------
+    def __getstate__(self) -> Dict[str, Any]:
+        """The report and the per-row arrays; not the C++ result (it has no Python form)."""
+        return {"report": self.report, "time_s": self.time_s,
+                "pressure_spec": self._pressure_spec, "index": self._index,
+                "request": self._request, "arrays": self._row_arrays()}
+
+    def __setstate__(self, state: Dict[str, Any]) -> None:
+        self._output = None
+        self._pressure_spec = state["pressure_spec"]
+        self._index = state["index"]
+        self._request = state["request"]
+        self._arrays = state["arrays"]
+        self._init_from_report(state["report"], state["time_s"])
+
+    def _row_arrays(self) -> Dict[str, Any]:
+        if self._arrays is None:
+            out = self._output
+            assert out is not None
+            self._arrays = {"eps": out.eps, "fitted": dict(out.fitted), "sigma": dict(out.sigma),
+                            "data": dict(out.data.columns()), "source": out.data.source,
+                            "lines": out.data.lines}
+        return self._arrays
+
+    def _cpp_output(self) -> "_frictionid.FitOutput":
+        """The C++ result; after unpickling, the same fit run again (same rows, options and
+        seed: the same result, docs/design.md §5)."""
+        if self._output is None:
+            request = _frictionid.FitRequest()
+            for name, value in self._request.items():
+                setattr(request, name, value)
+            arrays = self._row_arrays()
+            # The file and its lines too: warnings name the line of a CSV row.
+            data = _frictionid.restore_dataset(arrays["data"], arrays["source"],
+                                               list(arrays["lines"]))
+            self._output = _frictionid.fit(data, request)
+        return self._output
 
     # -- matrices ---------------------------------------------------------------------------
     @property
@@ -70,35 +136,59 @@ class FitResult:
 
     # -- rows -------------------------------------------------------------------------------
     @property
-    def eps(self) -> np.ndarray:
-        return self._output.eps
+    def index(self) -> "pandas.Index":
+        import pandas as pd
+
+        return pd.RangeIndex(self.rows) if self._index is None else self._index
+
+    @property
+    def eps(self) -> "pandas.Series":
+        import pandas as pd
+
+        return pd.Series(self._row_arrays()["eps"], index=self.index, name="eps")
 
     @property
     def fitted(self) -> "pandas.DataFrame":
-        return _data.frame(self._output.fitted)
+        return _data.frame(self._row_arrays()["fitted"], self.index)
+
+    @property
+    def sigma(self) -> "pandas.DataFrame":
+        return _data.frame(self._row_arrays()["sigma"], self.index)
+
+    @property
+    def residuals(self) -> "pandas.DataFrame":
+        data = self._row_arrays()["data"]
+        fitted = self._row_arrays()["fitted"]
+        return _data.frame({c: data[c] - fitted[c] for c in fitted}, self.index)
+
+    @property
+    def whitened_residuals(self) -> "pandas.DataFrame":
+        return self.residuals / self.sigma
 
     @property
     def data(self) -> "pandas.DataFrame":
-        return _data.frame(self._output.data.columns())
+        return _data.frame(self._row_arrays()["data"], self.index)
 
     def predict(self, data: Any = None) -> "pandas.DataFrame":
         """The fitted model's T_x, T_y, M_z, M_roll and N for every row of ``data`` (a
         DataFrame or dict with v_x, v_y (optional), omega, N, R; default the fitted rows), as a
-        pandas DataFrame."""
+        pandas DataFrame on ``data``'s index (the fitted rows' index by default)."""
         from ._model import evaluate
 
         if data is None:
-            data = self._output.data.columns()
+            data, index = self._row_arrays()["data"], self.index
+        else:
+            index = data.index if hasattr(data, "iloc") else None
         v_y = data["v_y"] if "v_y" in data.keys() else 0.0
         out = evaluate(self.model, self._pressure_spec, self.params, data["v_x"], v_y,
                        data["omega"], data["N"], data["R"])
-        return _data.frame(out)
+        return _data.frame(out, index)
 
     # -- files and text ---------------------------------------------------------------------
     def write_report(self, dir: "str | os.PathLike[str]") -> List[str]:
         """Writes report.json, report.md and the plots to ``dir``, as ``frictionid fit --report
         dir`` does; returns the paths written."""
-        return self._output.write_report(os.fspath(dir))
+        return self._cpp_output().write_report(os.fspath(dir))
 
     def summary(self) -> str:
         """A plain-text report in the style of lmfit's ``fit_report``."""

@@ -21,9 +21,13 @@ import logging
 import math
 import os
 import uuid
-from typing import Any, Dict, Iterable, List, NamedTuple, Optional, Sequence, Tuple, Union
+from typing import (TYPE_CHECKING, Any, Dict, Iterable, List, NamedTuple, Optional, Sequence,
+                    Tuple, Union)
 
 from . import _data, _fit, _frictionid
+
+if TYPE_CHECKING:
+    import pandas
 
 Inputs = Union[str, "os.PathLike[str]", Iterable[Union[str, "os.PathLike[str]"]], Any]
 
@@ -61,7 +65,7 @@ def fit_many(
     retries: int = DEFAULT_RETRIES,
     n_workers: Optional[int] = None,
     **fit_options: Any,
-) -> "pandas.DataFrame":  # noqa: F821
+) -> "pandas.DataFrame":
     """Fit many runs on a Dask cluster into ``frictionid batch``'s summary table.
 
     Args:
@@ -149,8 +153,16 @@ def plan_frame(frame: Any, options: "_frictionid.FitRequest", group_columns: Lis
     for i, key in enumerate(zip(*texts)):
         groups.setdefault(key, []).append(i)
     runs = []
+    owner: Dict[str, Tuple[str, ...]] = {}
     for key, rows in groups.items():
         label = "_".join(key)
+        if label in owner:  # ("1_2", "3") and ("1", "2_3"): one label, two groups
+            raise _frictionid.InputError(
+                f"group_by: the groups {_group_name(group_columns, owner[label])} and "
+                f"{_group_name(group_columns, key)} would share the label '{label}' (the "
+                f"values joined by '_'); expected group values whose joined labels differ, "
+                f"as frictionid batch --group-by requires")
+        owner[label] = key
         spec = _frictionid.table_run(label, options, list(zip(group_columns, key)))
         part = frame.iloc[rows]
         runs.append(Run(label, "", spec, _canonical_columns(part, columns)))
@@ -180,7 +192,21 @@ def run_on_cluster(runs: List[Run], client: Optional[Any] = None, *, threads: in
                       key=f"frictionid-fit-{k}-{run.directory}-{batch}",
                       retries=retries, pure=False)
         for k, (run, data) in enumerate(zip(runs, columns))]
-    results = client.gather(futures)
+    # Every run ends as a row: a task that still raised after its retries (or whose workers
+    # kept dying, KilledWorker) is a failed row with the error, as a failed fit is in
+    # `frictionid batch`; the other runs' results are kept.
+    from distributed import wait
+
+    wait(futures)
+    results = []
+    for run, future in zip(runs, futures):
+        if future.status == "finished":
+            results.append(future.result())
+            continue
+        error = future.exception() if future.status == "error" else None
+        why = (f"the task failed on the cluster: {type(error).__name__}: {error}"
+               if error is not None else f"the task ended as '{future.status}' on the cluster")
+        results.append((_frictionid.failed_batch_run(run.spec, why), None))
     return Outcome({run.label: row for run, (row, _) in zip(runs, results)},
                    {run.label: report for run, (_, report) in zip(runs, results)})
 
@@ -191,14 +217,22 @@ def fit_run(spec: str, threads: int, with_report: bool,
     and report.json as JSON text; a failure of the fit is a failed row, not an exception."""
     data = None
     if columns is not None:
+        arrays = {k: v for k, v in columns.items() if k != _INDEX}
         try:
-            data = _frictionid.dataset_from_columns(columns, "DataFrame")
+            data = _frictionid.dataset_from_columns(arrays, "DataFrame")
         except ValueError as e:
-            return _frictionid.failed_batch_run(spec, str(e)), None
+            error = str(e)
+            index = columns.get(_INDEX)
+            if index is not None and not _data._is_positional(index):
+                try:  # again, only to name the row by the frame's index label
+                    _frictionid.dataset_from_columns(arrays, "DataFrame", _data.row_labels(index))
+                except ValueError as labelled:
+                    error = str(labelled)
+            return _frictionid.failed_batch_run(spec, error), None
     return _frictionid.fit_batch_run(spec, threads, with_report, data)
 
 
-def summary_frame(csv_text: str) -> "pandas.DataFrame":  # noqa: F821
+def summary_frame(csv_text: str) -> "pandas.DataFrame":
     """summary.csv's text as a DataFrame: numbers as float64 (read back bit-identical), labels
     and errors as text, empty cells as NaN."""
     import pandas as pd
@@ -254,13 +288,18 @@ def _shortest(x: float) -> str:
     return repr(x)
 
 
-def _canonical_columns(part: Any, columns: Optional[Dict[str, str]]) -> Dict[str, Any]:
-    import numpy as np
+def _group_name(columns: List[str], values: Tuple[str, ...]) -> str:
+    return "(" + ", ".join(f"{c}={v!r}" for c, v in zip(columns, values)) + ")"
 
-    header_of = _data.column_map(columns)
-    out = {}
-    for name in _data.COLUMNS:
-        key = header_of.get(name, name)
-        if key in part.columns:
-            out[name] = np.ascontiguousarray(np.asarray(part[key], dtype=np.float64))
+
+# The key of a group's index among its columns: a rejected row is named by its label.
+_INDEX = "__index__"
+
+
+def _canonical_columns(part: Any, columns: Optional[Dict[str, str]]) -> Dict[str, Any]:
+    """A group's canonical columns, read as fit() reads a frame (pd.NA, refused dtypes), and
+    its index."""
+    out: Dict[str, Any] = dict(_data.canonical_arrays(part, _data.column_map(columns),
+                                                      "DataFrame"))
+    out[_INDEX] = part.index
     return out

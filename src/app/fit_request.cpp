@@ -1,6 +1,7 @@
 #include "app/fit_request.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <set>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/pressure_law_reader.hpp>
 #include "app/option_parsers.hpp"
+#include "identify/fitted_run.hpp"
 
 namespace frictionid::app {
 
@@ -182,6 +184,27 @@ FitResult fit_dataset(const FitSettings& s, const Dataset& data, FitObserver* ob
   } catch (const std::invalid_argument& e) {
     throw InputError(data.source, 0, 0, e.what());
   }
+}
+
+FitResult fit_dataset(const FitSettings& s, const Dataset& data, FitObserver* observer,
+                      RowSigmas& sigma) {
+  FittedRun run;
+  try {
+    run = fit_keeping_problem(s, data, observer);  // Fitter::fit's result, and its problem
+  } catch (const std::invalid_argument& e) {
+    throw InputError(data.source, 0, 0, e.what());
+  }
+  const ResidualRows& rows = run.problem.rows;
+  for (auto& v : sigma) v.clear();
+  for (Channel c : rows.channels) {
+    auto& out = sigma[static_cast<int>(c)];
+    out.resize(data.rows());
+    const double* column = rows.sigma_column(c);  // as ResidualRows::inverse_sigma reads it
+    const double scale = rows.scale[static_cast<int>(c)];
+    for (std::size_t i = 0; i < data.rows(); ++i)
+      out[i] = !data.present[static_cast<int>(c)][i] ? std::nan("") : column ? column[i] : scale;
+  }
+  return std::move(run.result);
 }
 
 }  // namespace frictionid::app

@@ -2,7 +2,9 @@
 // before it reads data (docs/design.md §3.5), and the fit of a loaded dataset.
 #pragma once
 
+#include <array>
 #include <string>
+#include <vector>
 
 #include <frictionid/dataset.hpp>
 #include <frictionid/fit_observer.hpp>
@@ -24,5 +26,14 @@ FitSettings fit_settings(const FitRequest& r, const std::string& model, bool len
 // Fits `data` with `s`; a dataset the fit rejects (std::invalid_argument) becomes an InputError
 // naming the data's source, as for a file the reader rejects. FitError passes through.
 FitResult fit_dataset(const FitSettings& s, const Dataset& data, FitObserver* observer);
+
+// Per channel, row by row, the sigma the final fit divided each residual by (a sigma column, the
+// estimated noise model's sigma, or the channel's fixed scale; NaN where the row does not
+// measure the channel); empty for channels not fitted.
+using RowSigmas = std::array<std::vector<double>, kChannelCount>;
+
+// fit_dataset that also hands back the row sigmas (Python's whitened residuals).
+FitResult fit_dataset(const FitSettings& s, const Dataset& data, FitObserver* observer,
+                      RowSigmas& sigma);
 
 }  // namespace frictionid::app

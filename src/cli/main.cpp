@@ -284,7 +284,7 @@ int main(int argc, char** argv) {
       "frictionid: identify coupled dry-friction parameters (f, kappa, h, a, b, m) "
       "from force and torque data"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "frictionid 0.1.0");
+  app.set_version_flag("--version", "frictionid " FRICTIONID_VERSION);
   Texts texts;
   CoefficientsRequest coefficients;
   EvalRequest eval;

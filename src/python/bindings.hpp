@@ -4,7 +4,16 @@
 
 #include <pybind11/pybind11.h>
 
+#include <frictionid/fitter.hpp>
+
 namespace frictionid::python {
+
+// A fit stopped by its cancel token or by the interpreter's exit: frictionid.FitCancelled, a
+// FitError.
+class FitCancelled : public FitError {
+ public:
+  using FitError::FitError;
+};
 
 void register_fit(pybind11::module_& m);       // datasets, FitOptions, fit, FitResult handle
 void register_evaluate(pybind11::module_& m);  // evaluate, coefficients

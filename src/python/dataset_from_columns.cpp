@@ -14,14 +14,17 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string row_name(std::size_t i) {
-  return fmt::format("row {} (index {})", i + 1, i);
-}
-
 }  // namespace
 
 Dataset dataset_from_columns(std::map<std::string, std::vector<double>> columns,
-                             const std::string& source) {
+                             const std::string& source,
+                             const std::vector<std::string>& row_labels) {
+  // A DataFrame's rows are named by their index label (what df.loc takes), others by position.
+  const auto row_name = [&](std::size_t i) {
+    if (i < row_labels.size())
+      return fmt::format("row with index {} (row {} of the frame)", row_labels[i], i + 1);
+    return fmt::format("row {} (index {})", i + 1, i);
+  };
   const char* kRequired[] = {"v_x", "omega", "N", "R"};
   for (const char* name : kRequired)
     if (!columns.count(name))

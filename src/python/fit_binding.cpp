@@ -1,6 +1,7 @@
 // Datasets (from a CSV file or from columns in memory), the fit request, and fit itself: the
 // same app code as `frictionid fit` (app::fit_settings, app::fit_dataset), run with the GIL
 // released and cancellable by Ctrl-C.
+#include <limits>
 #include <memory>
 
 #include <pybind11/stl.h>
@@ -14,6 +15,7 @@
 #include "app/request_text.hpp"
 #include "app/requests.hpp"
 #include "identify/thread_budget.hpp"
+#include "io/text.hpp"
 #include "python/bindings.hpp"
 #include "python/dataset_from_columns.hpp"
 #include "python/json_values.hpp"
@@ -26,35 +28,46 @@ namespace frictionid::python {
 
 namespace {
 
-// A finished fit and the rows it was fitted to (reports plot them).
+// A finished fit, the rows it was fitted to (reports plot them) and the sigma of every residual.
 struct FitOutput {
   FitResult result;
   std::shared_ptr<Dataset> data;
+  app::RowSigmas sigma;
 };
 
-std::shared_ptr<Dataset> from_columns(const py::dict& columns, const std::string& source) {
+std::shared_ptr<Dataset> from_columns(const py::dict& columns, const std::string& source,
+                                      const std::vector<std::string>& row_labels) {
   std::map<std::string, std::vector<double>> values;
   for (const auto& [key, array] : columns)
     values[py::cast<std::string>(key)] = to_vector(py::cast<DoubleArray>(array));
-  return std::make_shared<Dataset>(dataset_from_columns(std::move(values), source));
+  return std::make_shared<Dataset>(dataset_from_columns(std::move(values), source, row_labels));
 }
 
 std::shared_ptr<FitOutput> run_fit(const std::shared_ptr<Dataset>& data,
-                                   const app::FitRequest& request) {
+                                   const app::FitRequest& request, const py::object& cancel,
+                                   const py::object& progress) {
   const FitSettings s = app::fit_settings(request, request.model);
   auto out = std::make_shared<FitOutput>();
   out->data = data;
-  PythonObserver observer;
+  PythonObserver observer(cancel, progress);
   try {
     py::gil_scoped_release release;
     ThreadBudget budget(request.threads);  // threads= bounds the fit's and its report's threads
     const ThreadBudgetScope scope(&budget);
-    out->result = app::fit_dataset(s, *data, &observer);
+    out->result = app::fit_dataset(s, *data, &observer, out->sigma);
   } catch (const FitError&) {
     observer.rethrow_pending();  // Ctrl-C: KeyboardInterrupt rather than FitError("interrupted")
+    if (observer.stopped()) throw FitCancelled("cancelled");
     throw;
   }
   observer.rethrow_pending();
+  return out;
+}
+
+py::dict channel_arrays(const FitResult& r,
+                        const std::array<std::vector<double>, kChannelCount>& values) {
+  py::dict out;
+  for (Channel c : r.channels) out[channel_name(c)] = to_numpy(values[static_cast<int>(c)]);
   return out;
 }
 
@@ -64,6 +77,12 @@ void register_fit(py::module_& m) {
   py::class_<Dataset, std::shared_ptr<Dataset>>(m, "Dataset")
       .def_property_readonly("rows", &Dataset::rows)
       .def_readonly("source", &Dataset::source)
+      .def_property_readonly(
+          "lines",
+          [](const Dataset& d) {
+            return py::array_t<std::size_t>(static_cast<py::ssize_t>(d.line.size()), d.line.data());
+          },
+          "The file line of each row (empty for rows from memory): warnings name them.")
       .def("columns", &dataset_columns,
            "Canonical columns as float64 arrays (channels NaN where not measured).");
 
@@ -79,7 +98,38 @@ void register_fit(py::module_& m) {
       },
       py::arg("path"), py::arg("columns") = std::map<std::string, std::string>{},
       py::arg("threads") = 0);
-  m.def("dataset_from_columns", &from_columns, py::arg("columns"), py::arg("source"));
+  m.def("dataset_from_columns", &from_columns, py::arg("columns"), py::arg("source"),
+        py::arg("row_labels") = std::vector<std::string>{},
+        "row_labels: how messages name each row (a DataFrame's index labels); default the "
+        "position.");
+  m.def(
+      "restore_dataset",
+      [](const py::dict& columns, const std::string& source,
+         const std::vector<std::size_t>& lines) {
+        auto d = from_columns(columns, source, {});
+        d->line = lines;
+        return d;
+      },
+      py::arg("columns"), py::arg("source"), py::arg("lines"),
+      "A dataset rebuilt from its columns, its source and file lines (an unpickled FitResult).");
+  m.def(
+      "misspelling_distance",
+      [](const std::string& candidate, const std::string& target) -> py::object {
+        const std::size_t d = text::misspelling_distance(candidate, target);
+        if (d == std::numeric_limits<std::size_t>::max()) return py::none();
+        return py::int_(d);
+      },
+      py::arg("candidate"), py::arg("target"),
+      "The CSV reader's test of a misspelt column name: the distance, or None when unlike.");
+
+  py::class_<CancelToken, std::shared_ptr<CancelToken>>(
+      m, "CancelToken", "A flag that stops the fits given it, set from any thread.")
+      .def(py::init<>())
+      .def("cancel", &CancelToken::cancel, "Stops the fits using this token (FitCancelled).")
+      .def("is_set", &CancelToken::cancelled, "True once cancel() was called (threading.Event).")
+      .def_property_readonly("cancelled", &CancelToken::cancelled);
+  m.def("cancel_all_fits", &PythonObserver::cancel_all,
+        "Cancels every running fit and every later one (the interpreter is exiting).");
   m.def(
       "column_map",
       [](const std::map<std::string, std::string>& columns) {
@@ -114,7 +164,20 @@ void register_fit(py::module_& m) {
       .def_readwrite("threads", &FitRequest::threads)
       .def(
           "check", [](const FitRequest& r) { (void)app::fit_settings(r, r.model); },
-          "Raises InputError for what the fit would reject, before any data is read.");
+          "Raises InputError for what the fit would reject, before any data is read.")
+      .def(
+          "default_bounds",
+          [](FitRequest r) {
+            r.bounds.clear();  // the model's and law's own bounds, whatever else is asked
+            r.fix.clear();
+            r.start.clear();
+            const FitSettings s = app::fit_settings(r, r.model);
+            std::map<std::string, std::pair<double, double>> out;
+            for (std::size_t i = 0; i < s.params.size(); ++i)
+              out[param_names()[i]] = {s.params[i].lower, s.params[i].upper};
+            return out;
+          },
+          "Parameter name -> (lower, upper) that the fit uses when bounds= does not say.");
 
   // The text form of python3 -m frictionid batch's options, as `frictionid batch` reads it.
   m.def(
@@ -144,17 +207,16 @@ void register_fit(py::module_& m) {
           py::arg("dir"), py::arg("threads") = 0)
       .def_property_readonly("data", [](const FitOutput& f) { return f.data; })
       .def_property_readonly("eps", [](const FitOutput& f) { return to_numpy(f.result.eps); })
-      .def_property_readonly("fitted",
-                             [](const FitOutput& f) {
-                               py::dict out;
-                               for (Channel c : f.result.channels)
-                                 out[channel_name(c)] =
-                                     to_numpy(f.result.fitted[static_cast<int>(c)]);
-                               return out;
-                             })
+      .def_property_readonly(
+          "fitted", [](const FitOutput& f) { return channel_arrays(f.result, f.result.fitted); })
+      .def_property_readonly(
+          "sigma", [](const FitOutput& f) { return channel_arrays(f.result, f.sigma); },
+          "Per fitted channel, the sigma each row's residual was divided by (NaN: not "
+          "measured).")
       .def_property_readonly("time_s", [](const FitOutput& f) { return f.result.solver.time_s; });
 
-  m.def("fit", &run_fit, py::arg("data"), py::arg("request"));
+  m.def("fit", &run_fit, py::arg("data"), py::arg("request"), py::arg("cancel") = py::none(),
+        py::arg("progress") = py::none());
 }
 
 }  // namespace frictionid::python

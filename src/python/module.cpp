@@ -14,9 +14,13 @@ PYBIND11_MODULE(_frictionid, m) {
   m.doc() = "frictionid's C++ core; use the frictionid package instead of this module.";
   static py::exception<frictionid::InputError> input_error(m, "InputError", PyExc_ValueError);
   static py::exception<frictionid::FitError> fit_error(m, "FitError", PyExc_RuntimeError);
+  static py::exception<frictionid::python::FitCancelled> fit_cancelled(m, "FitCancelled",
+                                                                       fit_error.ptr());
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const frictionid::python::FitCancelled& e) {
+      fit_cancelled(e.what());
     } catch (const frictionid::InputError& e) {
       input_error(e.what());
     } catch (const frictionid::FitError& e) {
