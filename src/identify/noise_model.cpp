@@ -13,7 +13,7 @@ namespace frictionid {
 namespace {
 
 constexpr double kTiny = 1e-300;
-// The gradient check's threshold (8.15): a step that would lower -2 ln L by less than this
+// The gradient check's threshold (8.10c): a step that would lower -2 ln L by less than this
 // changes no decision and no digit a report shows.
 constexpr double kGainTolerance = 1e-6;
 
@@ -199,7 +199,7 @@ ChannelNoise fisher_scoring_affine(const std::vector<double>& y, const std::vect
 // The maximum likelihood of a two-term model (affine or additive): the best of its two bounds
 // and the profile search's interior maximum (variance_profile.hpp). For the affine model, Fisher
 // scoring, the estimator before the profile search, is kept where it reached the maximum (within
-// rounding of the best -2 log L, and passing the gradient check (8.15)), so that the fits it
+// rounding of the best -2 log L, and passing the gradient check (8.10c)), so that the fits it
 // served stay as they were to the last digit. A failed gradient check is kept as the estimate's
 // problem.
 ChannelNoise two_term_noise(NoiseModelKind kind, const std::vector<double>& y,

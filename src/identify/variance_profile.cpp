@@ -33,7 +33,7 @@ struct ProfileValue {
   double floor_variance = 0.0;          // A(t)
 };
 
-// (8.13), (8.14) over the rows i = 0, stride, 2 stride, ...: with q_i = tau z_i/(1 + tau z_i),
+// (8.10a), (8.10b) over the rows i = 0, stride, 2 stride, ...: with q_i = tau z_i/(1 + tau z_i),
 // d_i = d ln h_i/dt = k q_i and c_i = d d_i/dt = k q_i (1 - q_i), u_i = e_i^2/(A h_i),
 //   P' = sum d_i (1 - u_i)
 //   P'' = sum u_i (d_i^2 - c_i) - (sum u_i d_i)^2/n + sum c_i

@@ -1,4 +1,4 @@
-// The maximum likelihood of a two-term variance function (docs/physics.md §8.10, (8.12)-(8.14)):
+// The maximum likelihood of a two-term variance function (docs/physics.md §8.10, (8.10a)-(8.10c)):
 //
 //   affine    sigma_i^2 = s_abs^2 + (s_rel y_i)^2  = A (1 + tau y_i^2)
 //   additive  sigma_i   = s_abs + s_rel |y_i|       = sqrt(A) (1 + tau |y_i|)
@@ -19,7 +19,7 @@ enum class TwoTermForm { Affine, Additive };
 struct TwoTermMaximum {
   bool found = false;  // an interior maximum (s_abs, s_rel > 0); otherwise a bound is the maximum
   double s_abs = 0.0, s_rel = 0.0;
-  double neg2_loglik = 0.0;  // P at it (8.13)
+  double neg2_loglik = 0.0;  // P at it (8.10a)
   bool converged = false;    // the Newton search ended by its criterion, not its step limit
 };
 
@@ -28,7 +28,7 @@ struct TwoTermMaximum {
 TwoTermMaximum two_term_maximum(TwoTermForm form, const std::vector<double>& y,
                                 const std::vector<double>& e);
 
-// The gradient check (8.15): the decrease of -2 ln L that one Fisher-scoring step from (s_abs,
+// The gradient check (8.10c): the decrease of -2 ln L that one Fisher-scoring step from (s_abs,
 // s_rel) still promises, 1/2 g' F^-1 g, g the gradient and F the Fisher information in
 // log-parameters. A parameter at 0 counts only when moving it inward would descend (there in the
 // parameter itself, its logarithm being -inf). 0 at a maximum, up to rounding.
