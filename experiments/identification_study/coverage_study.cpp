@@ -10,7 +10,8 @@
 //
 //   coverage_study [--replicates N] [--replicates-exact N] [--baseline-replicates N]
 //                  [--interval-replicates N] [--bootstrap-resamples B]
-//                  [--cells all|default|intervals] [--rows R] [--jobs J] [--output FILE]
+//                  [--cells all|default|intervals] [--conditions relative,absolute,...]
+//                  [--rows R] [--jobs J] [--output FILE]
 //
 // Deterministic: replicate i of a (noise, model) pair uses the same noise draw in every cell
 // (with and without sigma columns, default and constant noise model, interval cells), whatever
@@ -23,6 +24,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <mutex>
 #include <sstream>
 #include <string>
@@ -44,13 +46,18 @@ struct NoiseCondition {
   const char* name;
   std::array<double, kChannelCount> rel;      // sigma_rel per channel
   std::array<double, kChannelCount> abs_rms;  // sigma_abs / RMS(channel) per channel
+  bool additive = false;  // sigma = s_abs + s_rel |y| instead of the two in quadrature
 };
 
+// The additive condition: a floor plus a proportional part whose balance differs strongly
+// between channels (floor-dominated T_y and M_roll, proportional T_x).
 const NoiseCondition kConditions[] = {
     {"relative", {0.01, 0.03, 0.02, 0.005}, {0.0, 0.0, 0.0, 0.0}},
     {"absolute", {0.0, 0.0, 0.0, 0.0}, {0.01, 0.03, 0.02, 0.005}},
     {"affine", {0.01, 0.02, 0.015, 0.005}, {0.005, 0.01, 0.01, 0.002}},
+    {"additive", {0.02, 0.002, 0.01, 0.001}, {0.001, 0.02, 0.005, 0.01}, true},
 };
+constexpr int kConditionCount = static_cast<int>(std::size(kConditions));
 
 struct Cell {
   int condition = 0;
@@ -75,7 +82,8 @@ std::uint64_t noise_seed(int condition, ModelKind model, int replicate) {
 }
 
 // The dataset of replicate `replicate`: the default design's noise-free rows plus Gaussian noise
-// with sigma_i^2 = s_abs^2 + (s_rel y_i)^2 per channel; sigma columns hold the true sigma.
+// with sigma_i^2 = s_abs^2 + (s_rel y_i)^2 (additive: sigma_i = s_abs + s_rel |y_i|) per channel;
+// sigma columns hold the true sigma.
 Dataset make_data(const Dataset& clean, const std::array<double, kChannelCount>& s_abs,
                   const NoiseCondition& cond, bool columns, std::uint64_t seed) {
   Dataset d = clean;
@@ -85,7 +93,8 @@ Dataset make_data(const Dataset& clean, const std::array<double, kChannelCount>&
   for (std::size_t i = 0; i < d.rows(); ++i)
     for (int c = 0; c < kChannelCount; ++c) {
       const double y = clean.value[c][i];
-      const double sd = std::hypot(s_abs[c], cond.rel[c] * y);
+      const double sd = cond.additive ? s_abs[c] + cond.rel[c] * std::fabs(y)
+                                      : std::hypot(s_abs[c], cond.rel[c] * y);
       d.value[c][i] = y + sd * normal.next();
       if (columns) d.sigma[c][i] = sd > 0.0 ? sd : 1e-300;
     }
@@ -98,6 +107,7 @@ int main(int argc, char** argv) {
   int replicates = 500, replicates_exact = 500, baseline = 300, jobs = 2;
   int interval_replicates = 400, bootstrap_resamples = 199;
   std::string which = "all";  // all, default (model-based and HC3 cells) or intervals
+  std::string conditions;     // comma-separated noise conditions of the default cells; empty: all
   std::size_t rows = 600;
   std::string output = "coverage_fits.csv";
   for (int i = 1; i < argc; ++i) {
@@ -121,6 +131,8 @@ int main(int argc, char** argv) {
       bootstrap_resamples = std::stoi(next());
     else if (a == "--cells")
       which = next();
+    else if (a == "--conditions")
+      conditions = next();
     else if (a == "--rows")
       rows = std::stoul(next());
     else if (a == "--jobs")
@@ -145,10 +157,11 @@ int main(int argc, char** argv) {
   SyntheticDesign design;
   design.rows = rows;
   std::array<Dataset, 3> clean;
-  std::array<std::array<std::array<double, kChannelCount>, 3>, 3> s_abs{};  // [model][cond]
+  std::array<std::array<std::array<double, kChannelCount>, kConditionCount>, 3>
+      s_abs{};  // [model][cond]
   for (int m = 0; m < 3; ++m) {
     clean[m] = generate_dataset(models[m], law, truth, design, NoiseSpec{}, 1);
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < kConditionCount; ++k)
       for (int c = 0; c < kChannelCount; ++c) {
         double ss = 0.0;
         for (double y : clean[m].value[c]) ss += y * y;
@@ -157,15 +170,17 @@ int main(int argc, char** argv) {
   }
 
   std::vector<Cell> cells;
-  for (int k = 0; k < 3 && which != "intervals"; ++k)
-    for (int m = 0; m < 3; ++m)
-      for (bool columns : {false, true}) {
-        const int n = models[m] == ModelKind::Exact ? replicates_exact : replicates;
-        cells.push_back({k, models[m], columns, NoiseModelKind::Auto, n});
-        // The constant-noise baseline (precision comparison) without sigma columns only.
-        if (baseline > 0 && !columns)
-          cells.push_back({k, models[m], columns, NoiseModelKind::Constant, std::min(n, baseline)});
-      }
+  for (int k = 0; k < kConditionCount && which != "intervals"; ++k)
+    if (conditions.empty() || conditions.find(kConditions[k].name) != std::string::npos)
+      for (int m = 0; m < 3; ++m)
+        for (bool columns : {false, true}) {
+          const int n = models[m] == ModelKind::Exact ? replicates_exact : replicates;
+          cells.push_back({k, models[m], columns, NoiseModelKind::Auto, n});
+          // The constant-noise baseline (precision comparison) without sigma columns only.
+          if (baseline > 0 && !columns)
+            cells.push_back(
+                {k, models[m], columns, NoiseModelKind::Constant, std::min(n, baseline)});
+        }
   // Interval cells: the profile and the wild bootstrap on the same fits, default noise model, no
   // sigma columns; relative and affine noise (the heteroscedastic conditions), every model.
   if (which != "default" && interval_replicates > 0)
@@ -191,7 +206,7 @@ int main(int argc, char** argv) {
   out << "noise,model,columns,noise_model,methods,replicate,status,seconds,dof,chosen,parameter,"
          "truth,value,stderr,ci_lo,ci_hi,stderr_sandwich,hc3_lo,hc3_hi,profile_lo,profile_hi,"
          "profile_closed,stderr_bootstrap,bootstrap_lo,bootstrap_hi,bootstrap_refits\n";
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < kConditionCount; ++k)
     for (int m = 0; m < 3; ++m) {
       std::cerr << "sigma_abs " << kConditions[k].name << " " << model_name(models[m]) << ":";
       for (int c = 0; c < kChannelCount; ++c) std::cerr << " " << s_abs[m][k][c];

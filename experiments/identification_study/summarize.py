@@ -26,7 +26,7 @@ wall = float(wall)
 INTERVAL_CELLS = "profile+bootstrap"  # the methods column of the profile and bootstrap cells
 INTERVAL_HEADING = "### Other interval methods: profile likelihood and wild bootstrap"
 
-NOISES = ("relative", "absolute", "affine")
+NOISES = ("relative", "absolute", "affine", "additive")
 MODELS = ("seed", "corrected", "exact")
 PARAMS = ("f", "kappa", "h", "a", "b", "b_tilde", "m", "p0")
 SYMBOL = {"kappa": "κ", "b_tilde": "b̃"}
@@ -117,7 +117,8 @@ def summarize(key):
 
 def chosen_share(key):
     """Share of fits whose BIC choice per channel matches the noise that generated the data."""
-    want = {"relative": "relative", "absolute": "constant", "affine": "affine"}[key[0]]
+    want = {"relative": "relative", "absolute": "constant", "affine": "affine",
+            "additive": "additive"}[key[0]]
     per_channel = defaultdict(int)
     n = 0
     for rep in fits[key].values():
@@ -215,7 +216,7 @@ else:
 
     L += ["", "### Noise model chosen by BIC (auto, no σ columns)", "",
           "Share of fits whose per-channel choice is the form that generated the data (relative → "
-          "relative, absolute → constant, affine → affine).", "",
+          "relative, absolute → constant, affine → affine, additive → additive).", "",
           "| noise | model | fits | T_x | T_y | M_z | M_roll |", "|---|---|---:|---:|---:|---:|---:|"]
     for noise in NOISES:
         for model in MODELS:

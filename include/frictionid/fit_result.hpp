@@ -37,12 +37,16 @@ struct ParameterEstimate {
 };
 
 // A channel's estimated noise (docs/physics.md §8.10): sigma_i^2 = s_abs^2 + (s_rel y_i)^2 with
-// the model's form (constant: s_rel = 0; relative: s_abs = 0 and |y_i| floored).
+// the model's form (constant: s_rel = 0; relative: s_abs = 0 and |y_i| floored), or for the
+// additive model sigma_i = s_abs + s_rel |y_i|.
 struct NoiseEstimate {
-  NoiseModelKind kind = NoiseModelKind::Constant;  // Constant, Relative or Affine
-  std::string model;                               // its name: "constant", "relative", "affine"
+  NoiseModelKind kind = NoiseModelKind::Constant;  // Constant, Relative, Affine or Additive
+  std::string model;  // its name: "constant", "relative", "affine", "additive"
   double s_abs = 0.0, s_rel = 0.0;
   double floor = 0.0;  // relative model: the smallest |y| used
+  // Why the estimate may not be the likelihood maximum (a two-term model whose gradient check
+  // failed, §8.10); empty when it is. A warning repeats it.
+  std::string problem;
 };
 
 struct ChannelSummary {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,10 +18,16 @@ namespace frictionid {
 enum class LossKind { None, Huber, Cauchy, SoftL1 };
 
 // How each channel's measurement noise is modelled (docs/physics.md §8.10). Columns: the sigma
-// columns, as given. Constant, Relative, Affine: that variance function for every fitted channel,
-// estimated from the residuals. Auto: the sigma columns where a channel has them, else the
-// variance function with the smallest BIC, per channel.
-enum class NoiseModelKind { Auto, Constant, Relative, Affine, Columns };
+// columns, as given. Constant, Relative, Affine, Additive: that variance function for every
+// fitted channel, estimated from the residuals. Auto: the sigma columns where a channel has them,
+// else the variance function with the smallest BIC, per channel.
+enum class NoiseModelKind { Auto, Constant, Relative, Affine, Additive, Columns };
+
+// The setting's name as the command line and the reports spell it: "auto", "constant",
+// "relative", "affine", "additive", "columns".
+const char* noise_model_kind_name(NoiseModelKind kind);
+// The setting of that name, or nullopt for any other string (exact, lower case).
+std::optional<NoiseModelKind> parse_noise_model_kind(const std::string& name);
 
 // Which 95 % interval a report puts first (docs/physics.md §8.12): from the covariance (model),
 // from the HC3 sandwich, or from the profile of the cost (asymmetric; refits per step).

@@ -78,7 +78,35 @@ std::string settings_problem(const FitSettings& s) {
   return {};
 }
 
+constexpr NoiseModelKind kNoiseModelKinds[] = {NoiseModelKind::Auto,     NoiseModelKind::Constant,
+                                               NoiseModelKind::Relative, NoiseModelKind::Affine,
+                                               NoiseModelKind::Additive, NoiseModelKind::Columns};
+
 }  // namespace
+
+const char* noise_model_kind_name(NoiseModelKind kind) {
+  switch (kind) {
+    case NoiseModelKind::Auto:
+      return "auto";
+    case NoiseModelKind::Constant:
+      return "constant";
+    case NoiseModelKind::Relative:
+      return "relative";
+    case NoiseModelKind::Affine:
+      return "affine";
+    case NoiseModelKind::Additive:
+      return "additive";
+    case NoiseModelKind::Columns:
+      return "columns";
+  }
+  return "?";
+}
+
+std::optional<NoiseModelKind> parse_noise_model_kind(const std::string& name) {
+  for (NoiseModelKind k : kNoiseModelKinds)
+    if (name == noise_model_kind_name(k)) return k;
+  return std::nullopt;
+}
 
 std::array<ParameterSetting, kParamCount> default_parameter_settings(
     const model::PressureLaw<double>& law) {

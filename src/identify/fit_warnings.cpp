@@ -172,6 +172,16 @@ void warn_closed_form_coefficients(const LocalProblem& lp, const ParamVector& x,
   }
 }
 
+// A two-term noise estimate that failed its gradient check (§8.10): the rows' weights, and the
+// standard errors that rely on them, come from a variance function short of its maximum.
+void warn_noise_estimates(FitResult& res) {
+  for (const auto& cs : res.channel_summaries)
+    if (cs.noise && !cs.noise->problem.empty())
+      res.warnings.push_back("the " + cs.noise->model + " noise estimate of " +
+                             channel_name(cs.channel) + " is " + cs.noise->problem +
+                             "; the weights of its rows and the standard errors may be off");
+}
+
 }  // namespace
 
 void add_fit_warnings(const LocalProblem& lp, const ParamVector& x,
@@ -181,6 +191,7 @@ void add_fit_warnings(const LocalProblem& lp, const ParamVector& x,
                            " after " + std::to_string(res.solver.iterations) +
                            " iterations): the estimates may not be at the optimum");
   warn_zero_and_growing_channels(*lp.rows.data, res);
+  warn_noise_estimates(res);
   warn_outliers(lp, res);
   warn_undetermined_and_correlated(lp, undetermined, res);
   // The model-based standard error trusts the noise model; the sandwich does not.

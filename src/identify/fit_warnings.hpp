@@ -10,8 +10,9 @@
 namespace frictionid {
 
 // Appends to res.warnings: no convergence, channels that are zero in every row, residuals that
-// grow with the signal, undetermined and strongly correlated parameters, parameters at a bound,
-// and what the data ranges and the pressure law say about the closed forms' coefficients.
+// grow with the signal, noise estimates short of their likelihood maximum, undetermined and
+// strongly correlated parameters, parameters at a bound, and what the data ranges and the pressure
+// law say about the closed forms' coefficients.
 void add_fit_warnings(const LocalProblem& lp, const ParamVector& x,
                       const std::vector<int>& undetermined, FitResult& res);
 

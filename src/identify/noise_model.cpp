@@ -6,11 +6,16 @@
 #include <optional>
 
 #include "identify/log_sum.hpp"
+#include "identify/number_text.hpp"
+#include "identify/variance_profile.hpp"
 
 namespace frictionid {
 namespace {
 
 constexpr double kTiny = 1e-300;
+// The gradient check's threshold (8.10c): a step that would lower -2 ln L by less than this
+// changes no decision and no digit a report shows.
+constexpr double kGainTolerance = 1e-6;
 
 // What the likelihood needs of a sample beyond its length, gathered in one pass: the closed
 // forms below then score the constant model and the affine model's bounds without a log per row.
@@ -52,6 +57,10 @@ double variance(const ChannelNoise& n, double y) {
     }
     case NoiseModelKind::Affine:
       return n.s_abs * n.s_abs + (n.s_rel * y) * (n.s_rel * y);
+    case NoiseModelKind::Additive: {
+      const double sd = n.s_abs + n.s_rel * std::fabs(y);
+      return sd * sd;
+    }
     default:
       return n.s_abs * n.s_abs;
   }
@@ -120,24 +129,33 @@ ChannelNoise relative_noise(const std::vector<double>& y, const std::vector<doub
   return n;
 }
 
-// Fisher scoring of the Gaussian likelihood in (a, b) = (s_abs^2, s_rel^2): weighted least
+// -2 log L of a two-term model on a bound, with variance a (b = 0: the constant model) or b y^2
+// (a = 0: proportional, unfloored; rows with y = 0 get the variance tiny): closed forms where
+// they are exact. Affine and additive models share both bounds.
+double bound_neg2_loglik(double a_only, double b_only, const std::vector<double>& y,
+                         const std::vector<double>& e, const SampleSums& t) {
+  if (b_only == 0.0) return constant_neg2_loglik(a_only, y.size(), t);
+  if (const auto s = proportional_neg2_loglik(b_only, t))
+    return *s + static_cast<double>(y.size() - t.nonzero) * std::log(kTiny) + t.zero_e2 / kTiny;
+  ChannelNoise n;
+  n.kind = NoiseModelKind::Affine;
+  n.s_abs = std::sqrt(a_only);
+  n.s_rel = std::sqrt(b_only);
+  score(n, y, e, 2);
+  return n.neg2_loglik;
+}
+
+// Fisher scoring of the affine likelihood in (a, b) = (s_abs^2, s_rel^2): weighted least
 // squares of e^2 on (1, y^2) with weights 1/sigma^4, a and b kept >= 0 (an active bound drops to
 // the one-parameter model, which is then the affine model's estimate). c and r: the constant
-// and relative estimates of the same sample, where it starts.
-ChannelNoise affine_noise(const std::vector<double>& y, const std::vector<double>& e,
-                          const ChannelNoise& c, const ChannelNoise& r, const SampleSums& t) {
+// and relative estimates of the same sample, where it starts. It can stop on a bound or cycle
+// short of the maximum; two_term_noise checks it.
+ChannelNoise fisher_scoring_affine(const std::vector<double>& y, const std::vector<double>& e,
+                                   const ChannelNoise& c, const ChannelNoise& r,
+                                   const SampleSums& t) {
   // Start halfway between the pure forms so that neither bound is active at the start.
   double a = 0.5 * c.s_abs * c.s_abs, b = 0.5 * r.s_rel * r.s_rel;
   const double ym2 = mean_square(y);
-  // -2 log L of the affine model on a bound (a = 0 or b = 0): closed forms where they are exact.
-  const auto bound_neg2_loglik = [&](double a_only, double b_only) {
-    if (b_only == 0.0) return constant_neg2_loglik(a_only, y.size(), t);
-    if (const auto s = proportional_neg2_loglik(b_only, t))
-      return *s + static_cast<double>(y.size() - t.nonzero) * std::log(kTiny) + t.zero_e2 / kTiny;
-    ChannelNoise n{NoiseModelKind::Affine, std::sqrt(a_only), std::sqrt(b_only), 0.0, 0.0, 0.0};
-    score(n, y, e, 2);
-    return n.neg2_loglik;
-  };
   for (int it = 0; it < 100; ++it) {
     double s00 = 0, s01 = 0, s11 = 0, t0 = 0, t1 = 0;
     for (std::size_t i = 0; i < y.size(); ++i) {
@@ -156,7 +174,8 @@ ChannelNoise affine_noise(const std::vector<double>& y, const std::vector<double
     double nb = det > 0 ? (s00 * t1 - s01 * t0) / det : -1.0;
     if (na < 0.0 || nb < 0.0) {  // a bound is active: the better one-parameter solution
       const double a_only = std::max(t0 / s00, 0.0), b_only = s11 > 0 ? std::max(t1 / s11, 0.0) : 0;
-      const bool keep_a = bound_neg2_loglik(a_only, 0.0) <= bound_neg2_loglik(0.0, b_only);
+      const bool keep_a =
+          bound_neg2_loglik(a_only, 0.0, y, e, t) <= bound_neg2_loglik(0.0, b_only, y, e, t);
       na = keep_a ? a_only : 0.0;
       nb = keep_a ? 0.0 : b_only;
     }
@@ -171,10 +190,57 @@ ChannelNoise affine_noise(const std::vector<double>& y, const std::vector<double
   n.s_abs = std::sqrt(a);
   n.s_rel = std::sqrt(b);
   if (a == 0.0 || b == 0.0)
-    set_score(n, bound_neg2_loglik(a, b), y.size(), 2);
+    set_score(n, bound_neg2_loglik(a, b, y, e, t), y.size(), 2);
   else
     score(n, y, e, 2);
   return n;
+}
+
+// The maximum likelihood of a two-term model (affine or additive): the best of its two bounds
+// and the profile search's interior maximum (variance_profile.hpp). For the affine model, Fisher
+// scoring, the estimator before the profile search, is kept where it reached the maximum (within
+// rounding of the best -2 log L, and passing the gradient check (8.10c)), so that the fits it
+// served stay as they were to the last digit. A failed gradient check is kept as the estimate's
+// problem.
+ChannelNoise two_term_noise(NoiseModelKind kind, const std::vector<double>& y,
+                            const std::vector<double>& e, const ChannelNoise& c,
+                            const ChannelNoise& r, const SampleSums& t) {
+  const TwoTermForm form =
+      kind == NoiseModelKind::Affine ? TwoTermForm::Affine : TwoTermForm::Additive;
+  ChannelNoise best;
+  best.kind = kind;
+  best.s_abs = c.s_abs;
+  set_score(best, bound_neg2_loglik(c.s_abs * c.s_abs, 0.0, y, e, t), y.size(), 2);
+  if (t.nonzero > 0) {
+    ChannelNoise p;
+    p.kind = kind;
+    const double b = t.e2_over_y2 / static_cast<double>(t.nonzero);
+    p.s_rel = std::sqrt(b);
+    set_score(p, bound_neg2_loglik(0.0, b, y, e, t), y.size(), 2);
+    if (p.neg2_loglik < best.neg2_loglik) best = p;
+  }
+  const TwoTermMaximum m = two_term_maximum(form, y, e);
+  if (m.found) {
+    ChannelNoise in;
+    in.kind = kind;
+    in.s_abs = m.s_abs;
+    in.s_rel = m.s_rel;
+    score(in, y, e, 2);
+    if (in.neg2_loglik < best.neg2_loglik) best = in;
+  }
+  if (kind == NoiseModelKind::Affine) {
+    const ChannelNoise f = fisher_scoring_affine(y, e, c, r, t);
+    const double rounding = 1e-9 * (static_cast<double>(y.size()) + std::fabs(best.neg2_loglik));
+    if (f.neg2_loglik <= best.neg2_loglik + rounding &&
+        remaining_gain(form, f.s_abs, f.s_rel, y, e) <= kGainTolerance)
+      return f;
+  }
+  const double gain = remaining_gain(form, best.s_abs, best.s_rel, y, e);
+  if (!(gain <= kGainTolerance))
+    best.problem = "not at the likelihood maximum: one more step would lower -2 ln L by " +
+                   number_text(gain) +
+                   (m.found && !m.converged ? " (the Newton search hit its step limit)" : "");
+  return best;
 }
 
 }  // namespace
@@ -182,6 +248,7 @@ ChannelNoise affine_noise(const std::vector<double>& y, const std::vector<double
 double noise_sigma(const ChannelNoise& n, double y) {
   // In data units, where a square may overflow: no variance() here.
   if (n.kind == NoiseModelKind::Relative) return n.s_rel * std::max(std::fabs(y), n.floor);
+  if (n.kind == NoiseModelKind::Additive) return n.s_abs + n.s_rel * std::fabs(y);
   if (n.kind != NoiseModelKind::Affine) return n.s_abs;
   // hypot guards against overflow and underflow at a cost; within these bounds a sqrt is exact
   // enough, and it is called for every row of every refit.
@@ -214,16 +281,19 @@ ChannelNoise estimate_channel_noise(const std::vector<double>& fitted_in,
       n = relative_noise(fitted, residual);
       break;
     case NoiseModelKind::Affine:
-      n = affine_noise(fitted, residual, constant_noise(residual, sums),
-                       relative_noise(fitted, residual), sums);
+    case NoiseModelKind::Additive:
+      n = two_term_noise(kind, fitted, residual, constant_noise(residual, sums),
+                         relative_noise(fitted, residual), sums);
       break;
-    default: {  // Auto: the smallest BIC; ties go to the simpler model
+    default: {  // Auto: the smallest BIC; ties go to the earlier (simpler, then older) model
       const ChannelNoise c = constant_noise(residual, sums);
       const ChannelNoise r = relative_noise(fitted, residual);
-      const ChannelNoise a = affine_noise(fitted, residual, c, r, sums);
+      const ChannelNoise a = two_term_noise(NoiseModelKind::Affine, fitted, residual, c, r, sums);
+      const ChannelNoise d = two_term_noise(NoiseModelKind::Additive, fitted, residual, c, r, sums);
       n = c;
       if (r.bic < n.bic) n = r;
       if (a.bic < n.bic) n = a;
+      if (d.bic < n.bic) n = d;
     }
   }
   const double f = std::sqrt(std::max(dof_factor, 1.0));
@@ -233,20 +303,12 @@ ChannelNoise estimate_channel_noise(const std::vector<double>& fitted_in,
   return n;
 }
 
+int noise_parameters(NoiseModelKind kind) {
+  return kind == NoiseModelKind::Affine || kind == NoiseModelKind::Additive ? 2 : 1;
+}
+
 const char* noise_model_name(NoiseModelKind kind) {
-  switch (kind) {
-    case NoiseModelKind::Auto:
-      return "auto";
-    case NoiseModelKind::Constant:
-      return "constant";
-    case NoiseModelKind::Relative:
-      return "relative";
-    case NoiseModelKind::Affine:
-      return "affine";
-    case NoiseModelKind::Columns:
-      return "columns";
-  }
-  return "?";
+  return noise_model_kind_name(kind);
 }
 
 }  // namespace frictionid

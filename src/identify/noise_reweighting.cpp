@@ -42,6 +42,9 @@ std::string describe(const ChannelNoise& n) {
     case NoiseModelKind::Affine:
       return "noise model affine: sigma^2 = " + number_text(n.s_abs) + "^2 + (" +
              number_text(n.s_rel) + " fitted)^2";
+    case NoiseModelKind::Additive:
+      return "noise model additive: sigma = " + number_text(n.s_abs) + " + " +
+             number_text(n.s_rel) + " |fitted|";
     default:
       return "noise model constant: sigma = " + number_text(n.s_abs);
   }
@@ -96,7 +99,7 @@ NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, 
       const NoiseModelKind kind =
           s.noise_model == NoiseModelKind::Auto ? NoiseModelKind::Auto : s.noise_model;
       noise[ci] = estimate_channel_noise(y, e, kind, dof_factor);
-      step.parameters = noise[ci].kind == NoiseModelKind::Affine ? 2 : 1;
+      step.parameters = noise_parameters(noise[ci].kind);
       // No sigma below rounding: noise-free data would otherwise divide by zero.
       double peak = 0.0;
       for (double v : y) peak = std::max(peak, std::fabs(v));
@@ -117,8 +120,9 @@ NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, 
         if (data.present[ci][i]) sum2 += (sigma[i] / largest) * (sigma[i] / largest);
       cs.scale = largest * std::sqrt(sum2 / static_cast<double>(cs.rows));
       cs.scale_source = describe(noise[ci]);
-      cs.noise = NoiseEstimate{noise[ci].kind, noise_model_name(noise[ci].kind), noise[ci].s_abs,
-                               noise[ci].s_rel, noise[ci].floor};
+      cs.noise = NoiseEstimate{noise[ci].kind,  noise_model_name(noise[ci].kind),
+                               noise[ci].s_abs, noise[ci].s_rel,
+                               noise[ci].floor, noise[ci].problem};
       // Relative change of the variance function, measured at the channel's typical fitted
       // value (its RMS), where both of the affine model's terms show.
       double y2 = 0.0;

@@ -151,5 +151,15 @@ TEST(FitSettings, ParametersAreReachedByName) {
   EXPECT_EQ(s.parameter("h").initial, 0.05);
 }
 
+TEST(FitSettings, NoiseModelNamesRoundTripAndUnknownNamesAreRejected) {
+  for (NoiseModelKind k :
+       {NoiseModelKind::Auto, NoiseModelKind::Constant, NoiseModelKind::Relative,
+        NoiseModelKind::Affine, NoiseModelKind::Additive, NoiseModelKind::Columns})
+    EXPECT_EQ(parse_noise_model_kind(noise_model_kind_name(k)), k) << noise_model_kind_name(k);
+  EXPECT_STREQ(noise_model_kind_name(NoiseModelKind::Additive), "additive");
+  for (const char* bad : {"", "Additive", "affine ", "add", "sigma"})
+    EXPECT_FALSE(parse_noise_model_kind(bad)) << bad;
+}
+
 }  // namespace
 }  // namespace frictionid

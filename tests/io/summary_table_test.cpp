@@ -50,7 +50,7 @@ FitResult two_parameter_fit() {
   r.warnings = {"one", "two"};
   ChannelSummary c;
   c.channel = Channel::M_z;
-  c.noise = NoiseEstimate{NoiseModelKind::Affine, "affine", 0.5, 0.02, 0.0};
+  c.noise = NoiseEstimate{NoiseModelKind::Affine, "affine", 0.5, 0.02, 0.0, ""};
   r.channel_summaries = {c};
   return r;
 }
