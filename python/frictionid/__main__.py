@@ -57,7 +57,7 @@ def batch_parser() -> argparse.ArgumentParser:
     p.add_argument("--param", default="", help="initial values: name=value,...")
     p.add_argument("--loss", default="none", help="none, huber:S, cauchy:S or soft_l1:S")
     p.add_argument("--noise-model", default="auto",
-                   choices=["auto", "constant", "relative", "affine", "columns"])
+                   choices=["auto", "constant", "relative", "affine", "additive", "columns"])
     p.add_argument("--intervals", default="model", choices=["model", "sandwich", "profile"])
     p.add_argument("--bootstrap", type=whole_number(0, 100000), default=0)
     p.add_argument("--starts", type=int, default=4)

@@ -62,8 +62,8 @@ def fit(
         channels: the channels to fit, e.g. ``["T_x", "M_z"]``; default every measured one.
         noise_model: each channel's noise (``--noise-model``): ``"auto"`` (the ``sigma_*``
             columns where given, else the variance function with the smallest BIC, estimated
-            from the residuals), ``"constant"``, ``"relative"``, ``"affine"`` (that function for
-            every channel) or ``"columns"`` (the sigma columns as given).
+            from the residuals), ``"constant"``, ``"relative"``, ``"affine"``, ``"additive"``
+            (that function for every channel) or ``"columns"`` (the sigma columns as given).
         intervals: the interval reports show first (``--intervals``): ``"model"``,
             ``"sandwich"`` or ``"profile"`` (``report["parameters"][p]["ci95_profile"]``).
         bootstrap: wild bootstrap refits (``--bootstrap``), 0 to 100000, seeded by ``seed``.

@@ -33,13 +33,9 @@ LossKind parse_loss(const std::string& spec, double& scale) {
 }
 
 NoiseModelKind parse_noise_model(const std::string& name) {
-  if (name == "auto") return NoiseModelKind::Auto;
-  if (name == "constant") return NoiseModelKind::Constant;
-  if (name == "relative") return NoiseModelKind::Relative;
-  if (name == "affine") return NoiseModelKind::Affine;
-  if (name == "columns") return NoiseModelKind::Columns;
+  if (const auto kind = parse_noise_model_kind(name)) return *kind;
   throw InputError("--noise-model '" + name +
-                   "': expected auto, constant, relative, affine or columns");
+                   "': expected auto, constant, relative, affine, additive or columns");
 }
 
 // The parameter index of name, or -1 when the model does not use it and lenient is set.

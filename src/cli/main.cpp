@@ -135,9 +135,10 @@ void add_fit_options(CLI::App* c, FitRequest& o, FitText& t, bool with_data = tr
       ->capture_default_str();
   c->add_option("--noise-model", o.noise_model,
                 "per-channel noise: auto (sigma columns where given, else the variance function "
-                "with the smallest BIC), constant, relative, affine (estimated from the "
-                "residuals), or columns (the sigma columns as given)")
-      ->check(CLI::IsMember({"auto", "constant", "relative", "affine", "columns"}))
+                "with the smallest BIC), constant, relative, affine (sqrt(s_abs^2 + s_rel^2 "
+                "fitted^2)), additive (s_abs + s_rel |fitted|), each estimated from the "
+                "residuals, or columns (the sigma columns as given)")
+      ->check(CLI::IsMember({"auto", "constant", "relative", "affine", "additive", "columns"}))
       ->capture_default_str();
   c->add_option("--intervals", o.intervals,
                 "the 95 % interval report.md shows first: model (from the covariance), sandwich "
