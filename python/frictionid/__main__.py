@@ -12,11 +12,54 @@ from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
 import time
 from typing import List, Optional
 
 EXIT_OK, EXIT_FAILURE, EXIT_BAD_INPUT, EXIT_SOME_RUNS_FAILED = 0, 1, 2, 4
+EXIT_INTERRUPTED = 130  # as `frictionid batch` after Ctrl-C
+
+
+class Interrupted(Exception):
+    """SIGINT, SIGTERM or SIGHUP during the batch: it ends without writing a summary."""
+
+
+def _stop_on_signals() -> None:
+    """Ctrl-C (and SIGTERM, SIGHUP) end the batch as the command line's does, wherever the main
+    thread is waiting: the handler raises, and the flag it leaves catches a waiting library
+    that swallowed the exception."""
+    def handler(signum, frame):
+        _stop_on_signals.received = signum
+        raise Interrupted(signal.Signals(signum).name)
+
+    _stop_on_signals.received = 0
+    for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+        signal.signal(sig, handler)
+
+
+def _check_interrupted() -> None:
+    if getattr(_stop_on_signals, "received", 0):
+        raise Interrupted(signal.Signals(_stop_on_signals.received).name)
+
+
+def _lock_output(output: str, wait: bool):
+    """`frictionid batch`'s lock on DIR (the sibling .DIR.lock): two batches, whichever front end
+    runs them, never write one directory at once. Waits for it unless --no-wait."""
+    from . import _frictionid
+
+    lock = _frictionid.BatchLock(output)
+    said = False
+    while not lock.try_acquire():
+        if not wait:
+            raise RuntimeError(f"another frictionid run is writing report directory {output}; "
+                               "without --no-wait it waits")
+        if not said:
+            print(f"frictionid: waiting for another run writing report directory {output}",
+                  file=sys.stderr)
+            said = True
+        time.sleep(0.1)
+    return lock
 MAX_SEED = 2**32 - 1  # as `frictionid fit --seed` (NLopt keeps 32 bits)
 
 
@@ -77,6 +120,9 @@ def batch_parser() -> argparse.ArgumentParser:
                    help="covariate on the x axis of summary.html's trend plots")
     p.add_argument("--per-run-reports", default="json", choices=["none", "json"],
                    help="json: DIR/runs/<label>/report.json, as frictionid batch")
+    p.add_argument("--no-wait", action="store_true",
+                   help="fail at once when another run is writing the same --output directory "
+                        "(default: wait for it)")
     p.add_argument("--retries", type=whole_number(0), default=2,
                    help="Dask retries of a task that raised (a lost worker's runs are "
                         "rescheduled regardless)")
@@ -96,6 +142,16 @@ def run_batch(args: argparse.Namespace) -> int:
                                channels=args.channels, columns=args.columns)
     if os.path.exists(args.output) and not os.path.isdir(args.output):
         raise _frictionid.InputError(f"{args.output}: --output exists and is not a directory")
+    lock = _lock_output(args.output, wait=not args.no_wait)
+    try:
+        return _run_locked(args, o, t_start)
+    finally:
+        lock.release()
+
+
+def _run_locked(args: argparse.Namespace, o, t_start: float) -> int:
+    from . import _frictionid, dask as fdask
+
     runs = fdask.plan(args.inputs, o, _frictionid.name_list("--group-by", args.group_by))
     _frictionid.check_trend_x([run.spec for run in runs], args.trend_x)
     with_reports = args.per_run_reports == "json"
@@ -111,6 +167,7 @@ def run_batch(args: argparse.Namespace) -> int:
                                        with_reports=with_reports, retries=args.retries,
                                        n_workers=args.workers)
 
+    _check_interrupted()  # an interrupted batch writes nothing: rerun it
     os.makedirs(args.output, exist_ok=True)
     if with_reports:
         for run in runs:
@@ -146,12 +203,22 @@ def main(argv: Optional[List[str]] = None) -> int:
     args = batch_parser().parse_args(argv[1:])  # exits 2 on a bad command line
     from . import _frictionid
 
+    _stop_on_signals()
     try:
         return run_batch(args)
+    except (Interrupted, KeyboardInterrupt) as e:
+        name = str(e) or "SIGINT"
+        print(f"frictionid: interrupted ({name}); no summary written, run the same command again",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
     except _frictionid.InputError as e:
         print(f"frictionid: error: {e}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except Exception as e:  # the cluster (unreachable, runs lost for good) or the file system
+        if getattr(_stop_on_signals, "received", 0):  # a library turned the signal into this
+            print("frictionid: interrupted; no summary written, run the same command again",
+                  file=sys.stderr)
+            return EXIT_INTERRUPTED
         print(f"frictionid: error: {type(e).__name__}: {e}", file=sys.stderr)
         return EXIT_FAILURE
 

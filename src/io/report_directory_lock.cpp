@@ -67,7 +67,7 @@ ReportDirectoryLock::ReportDirectoryLock(const std::string& dir, bool wait) {
       }
       if (!wait) {
         ::close(fd_);
-        throw std::runtime_error("another frictionid run is writing report directory " + dir +
+        throw DirectoryLocked("another frictionid run is writing report directory " + dir +
                                  " (lock " + lock_path.string() + "); without --no-wait it waits");
       }
       if (!said) {

@@ -6,13 +6,20 @@
 // the new one), so no lock file stays behind and no two runs hold "the" lock at once.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 
 namespace frictionid {
 
+// Another process holds the lock and the caller asked not to wait.
+class DirectoryLocked : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class ReportDirectoryLock {
  public:
-  // wait = false: throws std::runtime_error at once when another process holds the lock.
+  // wait = false: throws DirectoryLocked at once when another process holds the lock.
   // wait = true: says so on stderr and waits, polling the interrupt flag (interruption.hpp),
   // so Ctrl-C still ends the wait with Interrupted. Creates DIR's parent when missing.
   // Taking the lock again in a process that already holds it is a no-op (write_report locks

@@ -8,6 +8,7 @@
 // that Dask pickles cheaply and that holds no loaded rows, which the worker reads itself.
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <tuple>
 #include <vector>
@@ -26,6 +27,7 @@
 #include "app/requests.hpp"
 #include "identify/thread_budget.hpp"
 #include "io/atomic_file.hpp"
+#include "io/report_directory_lock.hpp"
 #include "io/text.hpp"
 #include "python/bindings.hpp"
 
@@ -168,9 +170,37 @@ void check_trend_x(const std::vector<std::string>& run_texts, const std::string&
   app::check_trend_x(trend_x, runs);
 }
 
+// `frictionid batch`'s lock on its output directory, taken by python3 -m frictionid batch too:
+// one lock, one rule for both front ends. Python waits for it itself, between attempts, so that
+// Ctrl-C ends the wait.
+class BatchLock {
+ public:
+  explicit BatchLock(std::string dir) : dir_(std::move(dir)) {}
+  // True when taken; false when another process holds it.
+  bool try_acquire() {
+    py::gil_scoped_release release;
+    try {
+      lock_ = std::make_unique<ReportDirectoryLock>(dir_, /*wait=*/false);
+    } catch (const DirectoryLocked&) {
+      return false;
+    }
+    return true;
+  }
+  void release() { lock_.reset(); }
+
+ private:
+  std::string dir_;
+  std::unique_ptr<ReportDirectoryLock> lock_;
+};
+
 }  // namespace
 
 void register_batch(py::module_& m) {
+  py::class_<BatchLock>(m, "BatchLock",
+                        "The lock frictionid batch holds on its output directory (.DIR.lock).")
+      .def(py::init<std::string>(), py::arg("dir"))
+      .def("try_acquire", &BatchLock::try_acquire)
+      .def("release", &BatchLock::release);
   m.def("plan_batch_runs", &plan, py::arg("inputs"), py::arg("options"), py::arg("group_by"));
   m.def("table_run", &table_run, py::arg("label"), py::arg("options"), py::arg("covariates"));
   m.def("fit_batch_run", &fit_run, py::arg("run"), py::arg("threads"), py::arg("report"),
