@@ -35,6 +35,13 @@ void check(const SimulateRequest& r) {
   require_finite(r.slip_angle_deg, "--slip-angle", false);
   if (r.v0 == 0.0 && r.omega0 == 0.0)
     throw InputError("--v0 and --omega0 are both 0: the body is at rest");
+  // The state's norm and the kinetic energy square the speeds: past 1e150 they overflow.
+  constexpr double kMaxSpeed = 1e150;
+  if (std::fabs(r.v0) > kMaxSpeed || std::fabs(r.omega0 * r.R) > kMaxSpeed)
+    throw InputError(fmt::format(
+        "--v0 and --omega0 R must be at most 1e150 (got v0 = {:g}, omega0 R = {:g}): the "
+        "kinetic energy of a faster body overflows a double",
+        r.v0, r.omega0 * r.R));
   if (!(r.tol >= 1e-14 && r.tol <= 1e-3)) throw InputError("--tol must be in [1e-14, 1e-3]");
   if (!(r.stop_fraction >= 1e-15 && r.stop_fraction <= 1e-3))
     throw InputError("--stop-fraction must be in [1e-15, 1e-3]");
@@ -102,6 +109,8 @@ SimulationOutcome simulate(const SimulateRequest& r) {
   try {
     sim = model::simulate_sliding_spinning_body(friction, body, init, settings);
   } catch (const std::domain_error& e) {
+    throw InputError(e.what());
+  } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
   const double wall =

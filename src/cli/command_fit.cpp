@@ -1,5 +1,6 @@
 // frictionid fit: identify a model's parameters from a dataset and write a report.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -81,9 +82,11 @@ int run_fit(const app::FitRequest& o) {
     else
       std::printf("  %-8s %.10g (not determined)\n", p.name.c_str(), p.value);
   }
-  std::printf("cost %.6g, reduced chi2 %.6g, %d of %d starts reached the best, %s in %.2f s\n",
-              r.cost, r.reduced_chi2, r.global.reached_best, r.global.starts,
-              r.solver.termination.c_str(), r.solver.time_s);
+  char reduced[32] = "undefined (dof 0)";  // no degree of freedom: see the warning
+  if (std::isfinite(r.reduced_chi2)) std::snprintf(reduced, sizeof reduced, "%.6g", r.reduced_chi2);
+  std::printf("cost %.6g, reduced chi2 %s, %d of %d starts reached the best, %s in %.2f s\n",
+              r.cost, reduced, r.global.reached_best, r.global.starts, r.solver.termination.c_str(),
+              r.solver.time_s);
   std::printf(
       "time: reading %.3f s, global stage %.3f s, local fits %.3f s, statistics and predictions "
       "%.3f s, report %.3f s\n",

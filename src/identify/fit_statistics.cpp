@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include <frictionid/fit_error.hpp>
@@ -193,7 +194,9 @@ std::vector<int> add_fit_statistics(const LocalProblem& lp, const ParamVector& x
   res.residuals = nobs;
   res.dof = nobs > k ? nobs - k : 0;
   res.chi2 = plain_chi2(lp, x);
-  res.reduced_chi2 = res.dof > 0 ? res.chi2 / static_cast<double>(res.dof) : 0.0;
+  // With no degree of freedom left there is no reduced chi² (it is not 0): NaN, null in reports.
+  res.reduced_chi2 = res.dof > 0 ? res.chi2 / static_cast<double>(res.dof)
+                                 : std::numeric_limits<double>::quiet_NaN();
   const InformationCriteria ic = information_criteria(res.chi2, nobs, k, absolute_sigma, noise);
   res.aic = ic.aic;
   res.bic = ic.bic;

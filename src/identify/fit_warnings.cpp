@@ -190,6 +190,12 @@ void add_fit_warnings(const LocalProblem& lp, const ParamVector& x,
     res.warnings.push_back("the local solver did not converge (" + res.solver.termination +
                            " after " + std::to_string(res.solver.iterations) +
                            " iterations): the estimates may not be at the optimum");
+  if (res.dof == 0)
+    res.warnings.push_back(
+        "no degree of freedom is left: " + std::to_string(res.residuals) +
+        " measured values for as many or more free parameters, so the fit passes through the "
+        "data and says nothing of its noise; the reduced chi2 and the standard errors are "
+        "undefined (null). Fit more rows or hold parameters fixed");
   warn_zero_and_growing_channels(*lp.rows.data, res);
   warn_noise_estimates(res);
   warn_outliers(lp, res);

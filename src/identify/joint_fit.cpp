@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <numeric>
 #include <optional>
@@ -256,13 +257,15 @@ JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
     for (const auto& cs : fits[r].result.channel_summaries) run.observations += cs.rows;
     run.dof = static_cast<double>(run.observations) - static_cast<double>(ko) -
               static_cast<double>(ks) / static_cast<double>(fits.size());
-    run.reduced_chi2 = run.dof > 0.0 ? run.chi2 / run.dof : 0.0;
+    run.reduced_chi2 =
+        run.dof > 0.0 ? run.chi2 / run.dof : std::numeric_limits<double>::quiet_NaN();
     out.cost += run.cost;
     out.chi2 += run.chi2;
     run.separate = std::move(fits[r].result);
     out.runs.push_back(std::move(run));
   }
-  out.reduced_chi2 = out.dof > 0 ? out.chi2 / static_cast<double>(out.dof) : 0.0;
+  out.reduced_chi2 = out.dof > 0 ? out.chi2 / static_cast<double>(out.dof)
+                                 : std::numeric_limits<double>::quiet_NaN();
   out.time_s = std::chrono::duration<double>(clock::now() - t0).count();
   return out;
 }

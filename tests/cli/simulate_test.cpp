@@ -99,4 +99,17 @@ TEST(CliSimulate, InvalidOptionsExitWithCodeTwoAndOneLine) {
   }
 }
 
+TEST(CliSimulate, ASpeedWhoseEnergyOverflowsIsExitTwoWithTheTrueReason) {
+  for (const char* args : {"simulate --inertia-ratio 0.5 --v0 1e300",
+                           "simulate --inertia-ratio 0.5 --v0 1 --omega0 1e200 --R 1"}) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find("overflows"), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(r.err.find("must be moving"), std::string::npos) << args << ": " << r.err;
+  }
+  // Just below the limit the body is simulated.
+  const RunResult ok = run("simulate --inertia-ratio 0.5 --v0 1e150");
+  EXPECT_EQ(ok.code, 0) << ok.err;
+}
+
 }  // namespace
