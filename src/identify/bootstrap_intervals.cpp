@@ -8,6 +8,7 @@
 #include <frictionid/fit_error.hpp>
 
 #include "identify/fit_problem.hpp"
+#include "identify/local_stage.hpp"
 #include "identify/row_chunks.hpp"
 
 namespace frictionid {

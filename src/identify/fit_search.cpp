@@ -10,6 +10,7 @@
 
 #include "identify/fit_problem.hpp"
 #include "identify/global_search.hpp"
+#include "identify/local_stage.hpp"
 
 namespace frictionid {
 namespace {

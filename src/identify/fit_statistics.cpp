@@ -7,6 +7,7 @@
 
 #include <frictionid/fit_error.hpp>
 
+#include "identify/local_stage.hpp"
 #include "identify/row_chunks.hpp"
 #include "identify/statistics.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <frictionid/fit_result.hpp>
 
-#include "identify/local_stage.hpp"
+#include "identify/local_problem.hpp"
 
 namespace frictionid {
 

@@ -11,7 +11,7 @@
 #include <frictionid/fit_result.hpp>
 #include <frictionid/fit_settings.hpp>
 
-#include "identify/local_stage.hpp"
+#include "identify/local_problem.hpp"
 
 namespace frictionid {
 

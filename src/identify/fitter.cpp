@@ -12,6 +12,7 @@
 #include "identify/fit_statistics.hpp"
 #include "identify/fit_warnings.hpp"
 #include "identify/fitted_run.hpp"
+#include "identify/local_stage.hpp"
 #include "identify/noise_model.hpp"
 #include "identify/noise_reweighting.hpp"
 #include "identify/number_text.hpp"

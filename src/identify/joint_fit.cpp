@@ -17,6 +17,7 @@
 #include "identify/fit_statistics.hpp"
 #include "identify/fitted_run.hpp"
 #include "identify/joint_stage.hpp"
+#include "identify/local_stage.hpp"
 #include "identify/row_chunks.hpp"
 #include "identify/statistics.hpp"
 

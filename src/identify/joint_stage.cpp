@@ -11,6 +11,7 @@
 #include <limits>
 #include <memory>
 
+#include "identify/local_stage.hpp"
 #include "identify/normal_equations.hpp"
 #include "identify/row_chunks.hpp"
 #include "identify/solver_progress.hpp"

@@ -1,4 +1,5 @@
 #include "identify/noise_reweighting.hpp"
+#include "identify/local_stage.hpp"
 #include "identify/number_text.hpp"
 
 #include <algorithm>

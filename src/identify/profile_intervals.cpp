@@ -1,4 +1,5 @@
 #include "identify/profile_intervals.hpp"
+#include "identify/local_stage.hpp"
 #include "identify/number_text.hpp"
 
 #include <algorithm>

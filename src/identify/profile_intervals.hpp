@@ -7,7 +7,7 @@
 #include <frictionid/fit_observer.hpp>
 #include <frictionid/fit_result.hpp>
 
-#include "identify/local_stage.hpp"
+#include "identify/local_problem.hpp"
 
 namespace frictionid {
 
