@@ -120,6 +120,9 @@ def batch_parser() -> argparse.ArgumentParser:
                    help="covariate on the x axis of summary.html's trend plots")
     p.add_argument("--per-run-reports", default="json", choices=["none", "json"],
                    help="json: DIR/runs/<label>/report.json, as frictionid batch")
+    p.add_argument("--runs-per-task", type=whole_number(1), metavar="N",
+                   help="runs fitted one after another in one Dask task (default: about four "
+                        "tasks per worker, at most 50 runs a task)")
     p.add_argument("--no-wait", action="store_true",
                    help="fail at once when another run is writing the same --output directory "
                         "(default: wait for it)")
@@ -152,7 +155,8 @@ def run_batch(args: argparse.Namespace) -> int:
 def _run_locked(args: argparse.Namespace, o, t_start: float) -> int:
     from . import _frictionid, dask as fdask
 
-    runs = fdask.plan(args.inputs, o, _frictionid.name_list("--group-by", args.group_by))
+    # Paths as the client sees them: the workers may run in another directory.
+    runs = fdask.plan([os.path.abspath(i) for i in args.inputs], o, _frictionid.name_list("--group-by", args.group_by))
     _frictionid.check_trend_x([run.spec for run in runs], args.trend_x)
     with_reports = args.per_run_reports == "json"
 
@@ -161,11 +165,12 @@ def _run_locked(args: argparse.Namespace, o, t_start: float) -> int:
 
         with Client(args.scheduler, timeout=f"{args.timeout}s") as client:
             outcome = fdask.run_on_cluster(runs, client, threads=args.threads,
-                                           with_reports=with_reports, retries=args.retries)
+                                           with_reports=with_reports, retries=args.retries,
+                                           runs_per_task=args.runs_per_task)
     else:
         outcome = fdask.run_on_cluster(runs, None, threads=args.threads,
                                        with_reports=with_reports, retries=args.retries,
-                                       n_workers=args.workers)
+                                       n_workers=args.workers, runs_per_task=args.runs_per_task)
 
     _check_interrupted()  # an interrupted batch writes nothing: rerun it
     os.makedirs(args.output, exist_ok=True)

@@ -20,6 +20,7 @@ import json
 import logging
 import math
 import os
+import sys
 import uuid
 from typing import (TYPE_CHECKING, Any, Dict, Iterable, List, NamedTuple, Optional, Sequence,
                     Tuple, Union)
@@ -64,6 +65,7 @@ def fit_many(
     threads: int = 1,
     retries: int = DEFAULT_RETRIES,
     n_workers: Optional[int] = None,
+    runs_per_task: Optional[int] = None,
     **fit_options: Any,
 ) -> "pandas.DataFrame":
     """Fit many runs on a Dask cluster into ``frictionid batch``'s summary table.
@@ -87,6 +89,9 @@ def fit_many(
         retries: Dask retries of a run whose task raised in Python; a fit that fails is not
             retried, it is a ``failed`` row with its error.
         n_workers: worker processes of the LocalCluster started without ``client``.
+        runs_per_task: runs fitted one after another in one Dask task (default: about four
+            tasks per worker, at most 50 runs a task), so that short fits do not each cost the
+            scheduler a task.
         **fit_options: the keyword arguments of :func:`frictionid.fit` (``model``,
             ``pressure``, ``fix``, ``bounds``, ``start``, ``loss``, ``channels``,
             ``noise_model``, ``seed``, ``starts``, ``global_search``, ``global_algorithm``,
@@ -115,7 +120,7 @@ def fit_many(
     else:
         runs = plan(_input_list(inputs), options, group_columns)
     outcome = run_on_cluster(runs, client, threads=threads, with_reports=with_reports,
-                             retries=retries, n_workers=n_workers)
+                             retries=retries, n_workers=n_workers, runs_per_task=runs_per_task)
     csv_text, json_text, _ = _frictionid.summary_files(list(outcome.rows.values()))
     table = summary_frame(csv_text)
     table.attrs["summary_csv"] = csv_text
@@ -171,7 +176,8 @@ def plan_frame(frame: Any, options: "_frictionid.FitRequest", group_columns: Lis
 
 def run_on_cluster(runs: List[Run], client: Optional[Any] = None, *, threads: int = 1,
                    with_reports: bool = False, retries: int = DEFAULT_RETRIES,
-                   n_workers: Optional[int] = None) -> Outcome:
+                   n_workers: Optional[int] = None,
+                   runs_per_task: Optional[int] = None) -> Outcome:
     """Fits the runs on ``client``'s workers (or on a LocalCluster started for them)."""
     if client is None:
         from distributed import Client, LocalCluster
@@ -180,35 +186,85 @@ def run_on_cluster(runs: List[Run], client: Optional[Any] = None, *, threads: in
                           processes=True, host="127.0.0.1", dashboard_address=None,
                           silence_logs=logging.ERROR) as cluster, Client(cluster) as own:
             return run_on_cluster(runs, own, threads=threads, with_reports=with_reports,
-                                  retries=retries)
+                                  retries=retries, runs_per_task=runs_per_task)
     batch = uuid.uuid4().hex[:8]
     # Each run's rows are sent once, to one worker, rather than inside the task graph. (A list:
     # scatter would take a dict's keys, the column names, for the data's keys.)
     in_memory = [run.columns for run in runs if run.columns is not None]
     scattered = iter(client.scatter(in_memory, hash=False) if in_memory else [])
     columns = [next(scattered) if run.columns is not None else None for run in runs]
+    # Runs go to the workers in groups, several to a task, so that the scheduler hands out a
+    # few tasks per second rather than one per short fit (experiments/dask_scaling/plan.md);
+    # enough groups remain to keep every worker busy to the end.
+    size = runs_per_task or _runs_per_task(len(runs), len(client.nthreads()) or 1)
+    groups = [list(range(start, min(start + size, len(runs))))
+              for start in range(0, len(runs), size)]
     futures = [
-        client.submit(fit_run, run.spec, threads, with_reports, data,
-                      key=f"frictionid-fit-{k}-{run.directory}-{batch}",
+        client.submit(fit_runs, [runs[k].spec for k in group], threads, with_reports,
+                      [columns[k] for k in group],
+                      key=f"frictionid-fit-{group[0]}-{runs[group[0]].directory}-{batch}",
                       retries=retries, pure=False)
-        for k, (run, data) in enumerate(zip(runs, columns))]
+        for group in groups]
     # Every run ends as a row: a task that still raised after its retries (or whose workers
-    # kept dying, KilledWorker) is a failed row with the error, as a failed fit is in
-    # `frictionid batch`; the other runs' results are kept.
-    from distributed import wait
+    # kept dying, KilledWorker) makes failed rows of its runs, with the error, as a failed fit is
+    # in `frictionid batch`; the other runs' results are kept.
+    from distributed import as_completed
 
-    wait(futures)
-    results = []
-    for run, future in zip(runs, futures):
+    progress = _Progress(len(runs)) if sys.stderr.isatty() else None
+    runs_of = {future.key: len(group) for future, group in zip(futures, groups)}
+    for future in as_completed(futures):
+        if progress is not None:
+            progress.add(runs_of[future.key])
+    if progress is not None:
+        progress.close()
+    results: List[Tuple[str, Optional[str]]] = [("", None)] * len(runs)
+    for group, future in zip(groups, futures):
         if future.status == "finished":
-            results.append(future.result())
+            for k, result in zip(group, future.result()):
+                results[k] = result
             continue
         error = future.exception() if future.status == "error" else None
         why = (f"the task failed on the cluster: {type(error).__name__}: {error}"
                if error is not None else f"the task ended as '{future.status}' on the cluster")
-        results.append((_frictionid.failed_batch_run(run.spec, why), None))
+        for k in group:
+            results[k] = (_frictionid.failed_batch_run(runs[k].spec, why), None)
     return Outcome({run.label: row for run, (row, _) in zip(runs, results)},
                    {run.label: report for run, (_, report) in zip(runs, results)})
+
+
+def _runs_per_task(runs: int, workers: int) -> int:
+    """About four tasks per worker, at most 50 runs a task: short fits share a task, and the
+    last tasks are small enough that no worker waits long for another."""
+    return max(1, min(50, runs // (4 * workers)))
+
+
+class _Progress:
+    """A one-line count of fitted runs on a terminal's stderr."""
+
+    def __init__(self, total: int) -> None:
+        self.total, self.done = total, 0
+
+    def add(self, count: int) -> None:
+        self.done += count
+        print(f"\rfrictionid batch: {self.done}/{self.total} runs fitted", end="",
+              file=sys.stderr, flush=True)
+
+    def close(self) -> None:
+        print("\r" + " " * 60 + "\r", end="", file=sys.stderr, flush=True)
+
+
+def fit_runs(specs: List[str], threads: int, with_report: bool,
+             columns: List[Optional[Dict[str, Any]]]) -> List[Tuple[str, Optional[str]]]:
+    """Runs on a worker: the runs of one task, one after another. A run that raises (not a
+    failed fit, which is a row already) is a failed row of its own; the others go on."""
+    out = []
+    for spec, data in zip(specs, columns):
+        try:
+            out.append(fit_run(spec, threads, with_report, data))
+        except Exception as e:  # noqa: BLE001 - every run ends as a row
+            out.append((_frictionid.failed_batch_run(
+                spec, f"the run raised on its worker: {type(e).__name__}: {e}"), None))
+    return out
 
 
 def fit_run(spec: str, threads: int, with_report: bool,
@@ -251,9 +307,11 @@ def _group_columns(group_by: Optional[Union[str, Sequence[str]]]) -> List[str]:
 
 
 def _input_list(inputs: Inputs) -> List[str]:
+    """The inputs as absolute paths, resolved in the client's working directory: the workers
+    read the files where they run, whose directory may be another."""
     if isinstance(inputs, (str, os.PathLike)):
-        return [os.fspath(inputs)]
-    out = [os.fspath(i) for i in inputs]
+        return [os.path.abspath(os.fspath(inputs))]
+    out = [os.path.abspath(os.fspath(i)) for i in inputs]
     if not out:
         raise _frictionid.InputError("fit_many: no inputs")
     return out
