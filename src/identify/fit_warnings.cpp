@@ -66,8 +66,13 @@ void warn_zero_and_growing_channels(const Dataset& data, FitResult& res) {
         "the residuals of " + growing + " grow with the measured magnitude (rank correlation " +
         growth_values +
         ") but their noise model is constant: the standard errors assume equal noise on every "
-        "row and are likely wrong; a relative or affine noise model (or auto), or per-row sigma "
-        "columns, would weight the rows by their noise");
+        "row and are likely wrong; " +
+        (res.noise_model == "auto"
+             ? std::string("auto chose the constant model by BIC, so ask for another: "
+                           "--noise-model relative, affine or additive, or per-row sigma columns, "
+                           "would weight the rows by their noise")
+             : std::string("a relative, affine or additive noise model (or auto), or per-row "
+                           "sigma columns, would weight the rows by their noise")));
 }
 
 // Rows whose whitened residual is beyond 6 sigma: a Gaussian gives one in 5e8, so they are
@@ -94,6 +99,18 @@ void warn_outliers(const LocalProblem& lp, FitResult& res) {
     const std::string where = worst < d.line.size() && d.line[worst] > 0
                                   ? "line " + std::to_string(d.line[worst])
                                   : "row " + std::to_string(worst + 1);
+    const std::size_t rows =
+        static_cast<std::size_t>(std::count(d.present[ci].begin(), d.present[ci].end(), true));
+    // Outliers are few; a tenth of the rows beyond 6 sigma is the model missing the channel.
+    if (count >= 5 && 10 * count >= rows) {
+      res.warnings.push_back(
+          std::to_string(count) + " of " + std::to_string(rows) + " rows of " + channel_name(c) +
+          " (" + number_text(100.0 * static_cast<double>(count) / static_cast<double>(rows)) +
+          " %) lie beyond 6 sigma of the fit, far more than outliers (a Gaussian gives one in "
+          "5e8): the model misses this channel. Check its sign convention, its units and the "
+          "columns' names, or compare models; a robust loss would hide the misfit, not fix it");
+      continue;
+    }
     res.warnings.push_back(
         std::to_string(count) + " row" + (count > 1 ? "s" : "") + " of " + channel_name(c) +
         " lie beyond 6 sigma of the fit; the worst, at " + where + " (" + channel_name(c) + " = " +
@@ -184,6 +201,20 @@ void warn_noise_estimates(FitResult& res) {
 
 }  // namespace
 
+// A channel the fit explains little of: with an estimated noise model a misfit is absorbed as
+// noise (reduced chi² near 1), so only the share of the variation explained tells. Either the
+// signal is below the noise, or the model misses it.
+void warn_unexplained_channels(FitResult& res) {
+  for (const auto& cs : res.channel_summaries)
+    if (cs.r2 && *cs.r2 < 0.5)
+      res.warnings.push_back(
+          "the fit explains " +
+          (*cs.r2 > 0.0 ? "only " + number_text(100.0 * *cs.r2) + " %" : std::string("none")) +
+          " of the variation of " + channel_name(cs.channel) + " (R^2 = " + number_text(*cs.r2) +
+          "): either its signal is below its noise, or the model misses it (a sign convention, "
+          "a column that is absent or misspelt such as v_y, or the wrong model)");
+}
+
 void add_fit_warnings(const LocalProblem& lp, const ParamVector& x,
                       const std::vector<int>& undetermined, FitResult& res) {
   if (!res.solver.converged)
@@ -199,6 +230,7 @@ void add_fit_warnings(const LocalProblem& lp, const ParamVector& x,
   warn_zero_and_growing_channels(*lp.rows.data, res);
   warn_noise_estimates(res);
   warn_outliers(lp, res);
+  warn_unexplained_channels(res);
   warn_undetermined_and_correlated(lp, undetermined, res);
   // The model-based standard error trusts the noise model; the sandwich does not.
   for (const auto& e : res.parameters)

@@ -336,6 +336,29 @@ void check_columns(const Header& h, const std::vector<std::string_view>& fields,
   }
 }
 
+// An extra column whose name is a likely misspelling of a column the file lacks (`vy` for v_y,
+// `Tx` for T_x, `m_z` for M_z) is an error: read as an extra column, a lateral slip would be
+// taken as 0 and a channel left out of the fit, and the fit would say nothing.
+void reject_misspelt_extras(const Header& h) {
+  for (std::size_t k = 0; k < h.field_count(); ++k) {
+    if (h.used[k] || h.names[k].empty()) continue;
+    std::size_t best = std::numeric_limits<std::size_t>::max();
+    int slot = -1;
+    for (int s = 0; s < kSlotCount; ++s) {
+      if (h.col[s].field >= 0) continue;
+      if (const std::size_t d = misspelling_distance(h.names[k], h.col[s].header); d < best)
+        best = d, slot = s;
+    }
+    if (slot < 0) continue;
+    throw InputError(h.path, 1, k + 1,
+                     "column " + shown(h.names[k]) + " looks like a misspelling of " +
+                         describe(h.col[slot], slot) +
+                         ", which the file does not have; did you mean '" + h.col[slot].header +
+                         "'? Rename the column, or map it with a column map " + kCanonical[slot] +
+                         "=" + h.names[k] + " (an unrelated column needs another name)");
+  }
+}
+
 // Reads and checks the header line; fills the extra column names of `data`.
 Header read_header(char* line, const std::string& path, const ColumnMap& columns,
                    bool require_channels, std::vector<std::string_view>& fields, Dataset& data) {
@@ -350,6 +373,7 @@ Header read_header(char* line, const std::string& path, const ColumnMap& columns
   h.names.assign(fields.begin(), fields.end());
   match_columns(h, fields);
   check_columns(h, fields, require_channels);
+  reject_misspelt_extras(h);
   for (std::size_t k = 0; k < h.field_count(); ++k)
     if (!h.used[k] && !h.names[k].empty()) {
       h.extra_fields.push_back(k);
