@@ -119,20 +119,10 @@ SummaryHtmlOptions summary_page_options(const BatchRequest& o, const std::vector
 
 }  // namespace
 
-int run_batch(const BatchRequest& o) {
-  const auto t_start = std::chrono::steady_clock::now();
-  if (o.jobs < 0) throw InputError("--jobs must be 0 (every hardware thread) or more");
-  // Bad options fail before any work.
-  const FitSettings command_line = fit_settings(o.fit, o.fit.model);
-  const std::vector<std::string>& shared = o.shared;
-  check_shared_option(shared, command_line);
-  if (o.fit.report.empty()) throw InputError("batch needs --report DIR");
-  const std::atomic<bool>* interrupted = install_interrupt_handler();
-  const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait);
-  std::error_code ec;
-  if (fs::exists(o.fit.report, ec) && !fs::is_directory(o.fit.report, ec))
-    throw InputError(o.fit.report, 0, 0, "--report: exists and is not a directory");
+namespace {
 
+// The runs of the request, checked before any fit: what a directory or a glob skipped is named.
+std::vector<BatchRun> planned_runs(const BatchRequest& o, const std::vector<std::string>& shared) {
   std::vector<std::string> skipped;
   std::vector<BatchRun> runs =
       plan_batch_runs(o.inputs, o.fit, o.group_by, "reports=" + o.per_run_reports, &skipped);
@@ -141,178 +131,250 @@ int run_batch(const BatchRequest& o) {
   if (o.warm_start) key_on_first_run(runs);
   check_shared_parameters(runs, shared);
   check_trend_x(o.trend_x, runs);
-  fs::create_directories(o.fit.report);
-  // A killed batch may have left a run's report half-renamed: its temporary files go, as a
-  // fit's leftovers do (the lock keeps any other writer out).
-  remove_atomic_leftovers(o.fit.report);
-  if (std::error_code list_error; fs::is_directory(fs::path(o.fit.report) / "runs", list_error))
-    for (const auto& e : fs::directory_iterator(fs::path(o.fit.report) / "runs", list_error))
-      if (e.is_directory(list_error) && !e.is_symlink(list_error))
-        remove_atomic_leftovers(e.path().string());
-  BatchJournal journal((fs::path(o.fit.report) / "journal.jsonl").string(), o.force);
+  return runs;
+}
 
-  std::vector<std::optional<SummaryRow>> rows(runs.size());
-  std::vector<std::size_t> pending;
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    bool changed = false;
-    const SummaryRow* done = journal.finished(runs[i].label, runs[i].key, runs[i].input, &changed);
-    if (changed)
-      std::fprintf(stderr,
-                   "frictionid: run '%s': its journal line is of other bytes than %s holds now "
-                   "(the file changed while it was fitted); fitting it again\n",
-                   text::for_terminal(runs[i].label).c_str(),
-                   text::for_terminal(runs[i].path).c_str());
-    if (done && has_run_report(o.fit.report, o.per_run_reports, runs[i]))
-      rows[i] = *done;
-    else
-      pending.push_back(i);
-  }
-  const std::size_t from_journal = runs.size() - pending.size();
+// A killed batch may have left a run's report half-renamed: its temporary files go, as a fit's
+// leftovers do (the lock keeps any other writer out).
+void remove_batch_leftovers(const fs::path& dir) {
+  remove_atomic_leftovers(dir.string());
+  std::error_code ec;
+  if (!fs::is_directory(dir / "runs", ec)) return;
+  for (const auto& e : fs::directory_iterator(dir / "runs", ec))
+    if (e.is_directory(ec) && !e.is_symlink(ec)) remove_atomic_leftovers(e.path().string());
+}
 
-  // --threads bounds every busy thread of the batch: its runs at once and whatever each run's
-  // reading, fitting and report take (identify/thread_budget.hpp). --jobs is at most that.
-  ThreadBudget budget(o.fit.threads);
-  const ThreadBudgetScope budget_scope(&budget);
-  const std::size_t jobs = std::clamp<std::size_t>(
-      o.jobs > 0 ? static_cast<std::size_t>(o.jobs) : static_cast<std::size_t>(budget.total()), 1,
-      std::min<std::size_t>(static_cast<std::size_t>(budget.total()),
-                            std::max<std::size_t>(1, pending.size())));
-  // Several fits at once each take one thread; alone, a fit may use --threads. The results do
-  // not depend on either.
-  const BatchContext context{o, fs::path(o.fit.report), jobs == 1 ? o.fit.threads : 1, interrupted};
-  const bool progress = show_progress(o.fit.progress);
+// One batch from its journal to its summary: the runs' rows as they end, the counters, and the
+// steps that fill them.
+class BatchDriver {
+ public:
+  BatchDriver(const BatchRequest& o, std::vector<BatchRun> runs,
+              const std::atomic<bool>* interrupted)
+      : o_(o),
+        dir_(o.fit.report),
+        runs_(std::move(runs)),
+        rows_(runs_.size()),
+        interrupted_(interrupted),
+        journal_((dir_ / "journal.jsonl").string(), o.force) {}
 
-  std::atomic<std::size_t> next{0};
-  std::mutex mutex;  // guards the counters below, the progress line and first_error
-  std::size_t fitted = 0, failed = 0;
-  std::exception_ptr first_error;
-  const auto t_fits = std::chrono::steady_clock::now();
-
-  // --warm-start: the first run is fitted in full before the others, which start from it. When
-  // the journal has its row, it is fitted again for its parameters only (same fit, same numbers).
-  // Alone, it may use --threads (the numbers do not depend on it).
-  std::optional<WarmStart> warm;
-  if (o.warm_start && !pending.empty() && runs.size() > 1) {
-    const BatchContext alone{o, context.dir, o.fit.threads, interrupted};
-    std::optional<FitResult> first;
-    // Interrupted, the workers stop at once and the batch ends as any interrupted batch does.
-    if (pending.front() == 0) {
-      FileFingerprint read;
-      SummaryRow row = fit_run(alone, runs[0], nullptr, read, &first);
-      if (!interrupted->load()) {
-        journal.record(runs[0].key, row, read);
-        ++fitted;
-        if (!row.ok) ++failed;
-        rows[0] = std::move(row);
-        next = 1;
-      }
-    } else {
-      TerminalObserver observer(interrupted, /*progress=*/false);
-      fit_batch_run(runs[0], o.fit.threads, &observer,
-                    [&](const FitResult& r, const Dataset&) { first = r; });
+  // Rows the journal holds for runs whose file still has the bytes their fit read.
+  void take_finished_from_journal() {
+    for (std::size_t i = 0; i < runs_.size(); ++i) {
+      bool changed = false;
+      const SummaryRow* done =
+          journal_.finished(runs_[i].label, runs_[i].key, runs_[i].input, &changed);
+      if (changed)
+        std::fprintf(stderr,
+                     "frictionid: run '%s': its journal line is of other bytes than %s holds now "
+                     "(the file changed while it was fitted); fitting it again\n",
+                     text::for_terminal(runs_[i].label).c_str(),
+                     text::for_terminal(runs_[i].path).c_str());
+      if (done && has_run_report(dir_, o_.per_run_reports, runs_[i]))
+        rows_[i] = *done;
+      else
+        pending_.push_back(i);
     }
-    if (first) warm = warm_start_from(runs[0].label, *first);
+    from_journal_ = runs_.size() - pending_.size();
   }
-  const WarmStart* warm_start = warm ? &*warm : nullptr;
-  auto worker = [&] {
-    for (;;) {
-      if (interrupted->load()) return;
-      {
-        std::lock_guard<std::mutex> guard(mutex);
-        if (first_error) return;
-      }
-      const std::size_t k = next.fetch_add(1);
-      if (k >= pending.size()) return;
-      const BatchRun& run = runs[pending[k]];
-      FileFingerprint read;
-      SummaryRow row = fit_run(context, run, warm_start, read);
-      if (interrupted->load()) return;  // a cancelled fit is not an outcome: fit it next time
-      try {
-        journal.record(run.key, row, read);
-      } catch (...) {
-        std::lock_guard<std::mutex> guard(mutex);
-        if (!first_error) first_error = std::current_exception();
-        return;
-      }
-      std::lock_guard<std::mutex> guard(mutex);
-      ++fitted;
-      if (!row.ok) ++failed;
-      rows[pending[k]] = std::move(row);
-      if (progress) {
-        const double elapsed = seconds(std::chrono::steady_clock::now() - t_fits).count();
-        const double eta = elapsed / fitted * (pending.size() - fitted);
-        std::fprintf(stderr, "\rfrictionid batch: %zu/%zu runs fitted, %zu failed, ETA %s   ",
-                     fitted, pending.size(), failed, duration_text(eta).c_str());
-      }
-    }
-  };
-  std::vector<std::thread> threads;
-  const int helpers = budget.acquire(static_cast<int>(jobs) - 1);
-  for (int t = 0; t < helpers; ++t)
-    threads.emplace_back([&] {
-      const ThreadBudgetScope scope(&budget);
-      worker();
-    });
-  worker();
-  for (auto& t : threads) t.join();
-  budget.release(helpers);
-  if (progress && fitted > 0) std::fprintf(stderr, "\r%80s\r", "");
-  if (first_error) std::rethrow_exception(first_error);
-  journal.sync();  // every line and run report durable before the summary names them
-  if (interrupted->load()) {
+
+  // Fits the pending runs, `jobs` at once, drawing threads from `budget`.
+  void fit_pending(ThreadBudget& budget) {
+    jobs_ = std::clamp<std::size_t>(
+        o_.jobs > 0 ? static_cast<std::size_t>(o_.jobs) : static_cast<std::size_t>(budget.total()),
+        1,
+        std::min<std::size_t>(static_cast<std::size_t>(budget.total()),
+                              std::max<std::size_t>(1, pending_.size())));
+    // Several fits at once each take one thread; alone, a fit may use --threads. The results do
+    // not depend on either.
+    const BatchContext context{o_, dir_, jobs_ == 1 ? o_.fit.threads : 1, interrupted_};
+    progress_ = show_progress(o_.fit.progress);
+    t_fits_ = std::chrono::steady_clock::now();
+    const std::optional<WarmStart> warm = fit_first_run_for_warm_start();
+    const WarmStart* warm_start = warm ? &*warm : nullptr;
+    std::vector<std::thread> threads;
+    const int helpers = budget.acquire(static_cast<int>(jobs_) - 1);
+    for (int t = 0; t < helpers; ++t)
+      threads.emplace_back([&] {
+        const ThreadBudgetScope scope(&budget);
+        fit_runs_until_done(context, warm_start);
+      });
+    fit_runs_until_done(context, warm_start);
+    for (auto& t : threads) t.join();
+    budget.release(helpers);
+    if (progress_ && fitted_ > 0) std::fprintf(stderr, "\r%80s\r", "");
+    if (first_error_) std::rethrow_exception(first_error_);
+    journal_.sync();  // every line and run report durable before the summary names them
+  }
+
+  // After an interruption: what is done stays in the journal for the rerun.
+  int report_interruption() const {
     std::fprintf(stderr,
                  "frictionid: interrupted after %zu of %zu runs; they are in %s/journal.jsonl, "
                  "run the same command again to fit the rest\n",
-                 fitted + from_journal, runs.size(), text::for_terminal(o.fit.report).c_str());
+                 fitted_ + from_journal_, runs_.size(), text::for_terminal(o_.fit.report).c_str());
     return kExitInterrupted;
   }
 
-  std::vector<SummaryRow> table;
-  std::size_t failed_total = 0;
-  for (auto& row : rows) {
-    if (!row->ok) {
-      ++failed_total;
-      std::fprintf(stderr, "frictionid: run '%s' failed: %s\n",
-                   text::for_terminal(row->label).c_str(), text::for_terminal(row->error).c_str());
+  // summary.csv, summary.json and summary.html, each atomically, all made before any is
+  // written so that a failure cannot leave them out of step. Names the failed runs.
+  void write_summaries(std::chrono::steady_clock::time_point t_start) {
+    for (auto& row : rows_) {
+      if (!row->ok) {
+        ++failed_total_;
+        std::fprintf(stderr, "frictionid: run '%s' failed: %s\n",
+                     text::for_terminal(row->label).c_str(),
+                     text::for_terminal(row->error).c_str());
+      }
+      table_.push_back(std::move(*row));
     }
-    table.push_back(std::move(*row));
+    const std::string csv = summary_csv(table_);
+    const std::string json =
+        summary_json(table_).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) +
+        "\n";
+    page_options_ = summary_page_options(o_, runs_);
+    const std::string page = summary_html(table_, page_options_);
+    write_file_atomically((dir_ / "summary.csv").string(), csv);
+    write_file_atomically((dir_ / "summary.json").string(), json);
+    write_file_atomically((dir_ / "summary.html").string(), page);
+    std::printf(
+        "batch: %zu runs: %zu fitted, %zu from the journal, %zu failed; %.2f s, %zu at once\n",
+        runs_.size(), fitted_, from_journal_, failed_total_,
+        seconds(std::chrono::steady_clock::now() - t_start).count(), jobs_);
+    const std::string report = text::for_terminal(o_.fit.report);
+    std::printf("summary: %s/summary.csv, %s/summary.html\n", report.c_str(), report.c_str());
   }
-  const fs::path dir(o.fit.report);
-  // All three are made before any is written, so a failure cannot leave them out of step.
-  const std::string csv = summary_csv(table);
-  const std::string json =
-      summary_json(table).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) +
-      "\n";
-  const SummaryHtmlOptions page_options = summary_page_options(o, runs);
-  const std::string page = summary_html(table, page_options);
-  write_file_atomically((dir / "summary.csv").string(), csv);
-  write_file_atomically((dir / "summary.json").string(), json);
-  write_file_atomically((dir / "summary.html").string(), page);
-  std::printf(
-      "batch: %zu runs: %zu fitted, %zu from the journal, %zu failed; %.2f s, %zu at once\n",
-      runs.size(), fitted, from_journal, failed_total,
-      seconds(std::chrono::steady_clock::now() - t_start).count(), jobs);
-  const std::string report = text::for_terminal(o.fit.report);
-  std::printf("summary: %s/summary.csv, %s/summary.html\n", report.c_str(), report.c_str());
-  if (!shared.empty()) {
+
+  // --shared: the joint fit of the runs that succeeded; the exit code.
+  int shared_fit(const std::vector<std::string>& shared) {
+    if (shared.empty()) return failed_total_ > 0 ? kExitSomeRunsFailed : kExitOk;
     std::string shared_text;
     for (const auto& name : shared) shared_text += (shared_text.empty() ? "" : ",") + name;
     shared_text = text::for_terminal(shared_text);
     // The joint fit refits every run alone first: on a terminal, say so before the wait.
-    if (progress)
+    if (progress_)
       std::fprintf(stderr, "frictionid batch: joint fit (--shared %s) of the %zu fitted runs...\n",
-                   shared_text.c_str(), runs.size() - failed_total);
+                   shared_text.c_str(), runs_.size() - failed_total_);
     try {
-      TerminalObserver observer(interrupted, /*progress=*/false);
-      write_shared_fit(runs, table, shared, o.fit.threads, &observer, o.fit.report, page_options);
+      TerminalObserver observer(interrupted_, /*progress=*/false);
+      write_shared_fit(runs_, table_, shared, o_.fit.threads, &observer, o_.fit.report,
+                       page_options_);
     } catch (const FitError& e) {
-      if (interrupted->load()) return kExitInterrupted;
+      if (interrupted_->load()) return kExitInterrupted;
       std::fprintf(stderr, "frictionid: the joint fit (--shared %s) failed: %s\n",
                    shared_text.c_str(), text::for_terminal(e.what()).c_str());
       return kExitFitFailed;
     }
+    return failed_total_ > 0 ? kExitSomeRunsFailed : kExitOk;
   }
-  return failed_total > 0 ? kExitSomeRunsFailed : kExitOk;
+
+ private:
+  // --warm-start: the first run is fitted in full before the others, which start from it. When
+  // the journal has its row, it is fitted again for its parameters only (same fit, same numbers).
+  // Alone, it may use --threads (the numbers do not depend on it). Interrupted, the workers stop
+  // at once and the batch ends as any interrupted batch does.
+  std::optional<WarmStart> fit_first_run_for_warm_start() {
+    if (!o_.warm_start || pending_.empty() || runs_.size() < 2) return std::nullopt;
+    const BatchContext alone{o_, dir_, o_.fit.threads, interrupted_};
+    std::optional<FitResult> first;
+    if (pending_.front() == 0) {
+      FileFingerprint read;
+      SummaryRow row = fit_run(alone, runs_[0], nullptr, read, &first);
+      if (!interrupted_->load()) {
+        journal_.record(runs_[0].key, row, read);
+        ++fitted_;
+        if (!row.ok) ++failed_;
+        rows_[0] = std::move(row);
+        next_ = 1;
+      }
+    } else {
+      TerminalObserver observer(interrupted_, /*progress=*/false);
+      fit_batch_run(runs_[0], o_.fit.threads, &observer,
+                    [&](const FitResult& r, const Dataset&) { first = r; });
+    }
+    if (!first) return std::nullopt;
+    return warm_start_from(runs_[0].label, *first);
+  }
+
+  // One thread's share: the next pending run until none is left, the batch is interrupted or
+  // the journal cannot be written.
+  void fit_runs_until_done(const BatchContext& context, const WarmStart* warm_start) {
+    for (;;) {
+      if (interrupted_->load()) return;
+      {
+        std::lock_guard<std::mutex> guard(mutex_);
+        if (first_error_) return;
+      }
+      const std::size_t k = next_.fetch_add(1);
+      if (k >= pending_.size()) return;
+      const BatchRun& run = runs_[pending_[k]];
+      FileFingerprint read;
+      SummaryRow row = fit_run(context, run, warm_start, read);
+      if (interrupted_->load()) return;  // a cancelled fit is not an outcome: fit it next time
+      try {
+        journal_.record(run.key, row, read);
+      } catch (...) {
+        std::lock_guard<std::mutex> guard(mutex_);
+        if (!first_error_) first_error_ = std::current_exception();
+        return;
+      }
+      std::lock_guard<std::mutex> guard(mutex_);
+      ++fitted_;
+      if (!row.ok) ++failed_;
+      rows_[pending_[k]] = std::move(row);
+      if (progress_) {
+        const double elapsed = seconds(std::chrono::steady_clock::now() - t_fits_).count();
+        const double eta = elapsed / fitted_ * (pending_.size() - fitted_);
+        std::fprintf(stderr, "\rfrictionid batch: %zu/%zu runs fitted, %zu failed, ETA %s   ",
+                     fitted_, pending_.size(), failed_, duration_text(eta).c_str());
+      }
+    }
+  }
+
+  const BatchRequest& o_;
+  const fs::path dir_;
+  std::vector<BatchRun> runs_;
+  std::vector<std::optional<SummaryRow>> rows_;
+  const std::atomic<bool>* interrupted_;
+  BatchJournal journal_;
+  std::vector<std::size_t> pending_;
+  std::size_t from_journal_ = 0, jobs_ = 1;
+  bool progress_ = false;
+  std::chrono::steady_clock::time_point t_fits_;
+  std::atomic<std::size_t> next_{0};
+  std::mutex mutex_;  // guards the counters below, the progress line and first_error_
+  std::size_t fitted_ = 0, failed_ = 0, failed_total_ = 0;
+  std::exception_ptr first_error_;
+  std::vector<SummaryRow> table_;
+  SummaryHtmlOptions page_options_;
+};
+
+}  // namespace
+
+int run_batch(const BatchRequest& o) {
+  const auto t_start = std::chrono::steady_clock::now();
+  if (o.jobs < 0) throw InputError("--jobs must be 0 (every hardware thread) or more");
+  // Bad options fail before any work.
+  check_shared_option(o.shared, fit_settings(o.fit, o.fit.model));
+  if (o.fit.report.empty()) throw InputError("batch needs --report DIR");
+  const std::atomic<bool>* interrupted = install_interrupt_handler();
+  const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait);
+  std::error_code ec;
+  if (fs::exists(o.fit.report, ec) && !fs::is_directory(o.fit.report, ec))
+    throw InputError(o.fit.report, 0, 0, "--report: exists and is not a directory");
+
+  std::vector<BatchRun> runs = planned_runs(o, o.shared);
+  fs::create_directories(o.fit.report);
+  remove_batch_leftovers(o.fit.report);
+  BatchDriver batch(o, std::move(runs), interrupted);
+  batch.take_finished_from_journal();
+  // --threads bounds every busy thread of the batch: its runs at once and whatever each run's
+  // reading, fitting and report take (identify/thread_budget.hpp). --jobs is at most that.
+  ThreadBudget budget(o.fit.threads);
+  const ThreadBudgetScope budget_scope(&budget);
+  batch.fit_pending(budget);
+  if (interrupted->load()) return batch.report_interruption();
+  batch.write_summaries(t_start);
+  return batch.shared_fit(o.shared);
 }
 
 }  // namespace frictionid::cli
