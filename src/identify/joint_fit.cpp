@@ -124,28 +124,15 @@ void check_shared_parameters(const FitSettings& s, const std::vector<std::string
   }
 }
 
-JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
-                         const std::vector<std::string>& shared_names, int threads,
-                         FitObserver* observer) {
-  using clock = std::chrono::steady_clock;
-  const auto t0 = clock::now();
-  const std::vector<int> shared = shared_indices(shared_names);
-  if (inputs.empty()) throw std::invalid_argument("a joint fit needs at least one run");
-  for (const auto& in : inputs) {
-    try {
-      check_shared_parameters(in.settings, shared_names);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("run " + in.label + ": " + e.what());
-    }
-  }
-  const int workers = resolve_thread_count(threads);
+namespace {
 
-  // 1. Every run alone: its optimum and the whitening its noise model gives. With at least as
-  // many runs as threads, one run per thread (a fit's bits do not depend on its thread count);
-  // the first failing run in input order is the one reported, whatever the schedule.
+// 1. Every run alone: its optimum and the whitening its noise model gives. With at least as many
+// runs as threads, one run per thread (a fit's bits do not depend on its thread count); the first
+// failing run in input order is the one reported, whatever the schedule.
+std::vector<FittedRun> fit_runs_alone(const std::vector<JointRunInput>& inputs, int workers,
+                                      bool parallel_runs, FitObserver* observer) {
   for (const auto& in : inputs)
     if (in.data == nullptr) throw std::invalid_argument("run " + in.label + ": no data");
-  const bool parallel_runs = inputs.size() >= static_cast<std::size_t>(workers);
   std::vector<FittedRun> fits(inputs.size());
   std::vector<std::exception_ptr> failed(inputs.size());
   CancelOnlyObserver cancel_only(observer);
@@ -166,54 +153,72 @@ JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
   if (observer && observer->cancelled()) throw FitError("interrupted");
   for (const auto& f : failed)
     if (f) std::rethrow_exception(f);
+  return fits;
+}
 
-  // 2. One problem over all runs, from the common start.
+// 2. One problem over all runs, the shared parameters first, from their common start.
+JointProblem joint_problem(const std::vector<FittedRun>& fits, const std::vector<int>& shared,
+                           int workers, bool parallel_runs) {
   JointProblem jp;
   jp.shared = shared;
-  jp.threads = workers;
+  jp.threads = parallel_runs ? workers : 1;
   std::vector<double> start(shared.size());
   for (std::size_t j = 0; j < shared.size(); ++j) start[j] = common_start(fits, shared[j]);
-  for (std::size_t r = 0; r < fits.size(); ++r) {
-    jp.runs.push_back(shared_first(fits[r].problem, shared));
+  for (const FittedRun& fit : fits) {
+    jp.runs.push_back(shared_first(fit.problem, shared));
     jp.runs.back().threads = parallel_runs ? 1 : workers;
-    ParamVector x = fits[r].x;
+    ParamVector x = fit.x;
     for (std::size_t j = 0; j < shared.size(); ++j) x[shared[j]] = start[j];
     jp.start.push_back(x);
   }
-  if (!parallel_runs) jp.threads = 1;
-  const JointOutcome joint = joint_local_fit(jp, observer);
-  if (observer && observer->cancelled()) throw FitError("interrupted");
-  if (!std::isfinite(joint.cost))
-    throw FitError("the joint fit failed (" + joint.termination + ")");
+  return jp;
+}
 
-  // 3. The joint covariance: H = sum of the runs' J^T J, with the runs' own blocks eliminated.
-  const std::size_t ks = shared.size();
-  const auto kse = static_cast<Eigen::Index>(ks);
-  std::vector<Eigen::MatrixXd> h(fits.size());
-  std::vector<char> good(fits.size(), 1);
-  for_each_chunk(fits.size(), jp.threads, [&](std::size_t r) {
+// 3. The joint covariance: H = sum of the runs' J^T J, with the runs' own blocks eliminated
+// (the Schur complement on the shared block).
+struct JointCovariance {
+  std::vector<Eigen::MatrixXd> h;            // each run's J^T J, shared parameters first
+  std::vector<Eigen::MatrixXd> own_inverse;  // each run's own block, inverted
+  Eigen::MatrixXd shared;                    // the shared parameters' covariance
+  bool determined = true;
+};
+
+JointCovariance joint_covariance(const JointProblem& jp, const JointOutcome& joint) {
+  const auto kse = static_cast<Eigen::Index>(jp.shared.size());
+  const std::size_t runs = jp.runs.size();
+  JointCovariance c;
+  c.h.resize(runs);
+  c.own_inverse.resize(runs);
+  std::vector<char> good(runs, 1);
+  for_each_chunk(runs, jp.threads, [&](std::size_t r) {
     NormalEquations ne;
     good[r] = normal_equations(jp.runs[r], joint.x[r], ne);
-    h[r] = ne.jtj;
+    c.h[r] = ne.jtj;
   });
   if (std::any_of(good.begin(), good.end(), [](char g) { return g == 0; }))
     throw FitError("the model is not finite at the joint optimum");
   Eigen::MatrixXd schur = Eigen::MatrixXd::Zero(kse, kse);
-  std::vector<Eigen::MatrixXd> own_inverse(fits.size());
-  bool determined = true;
-  for (std::size_t r = 0; r < fits.size(); ++r) {
-    const Eigen::Index ko = h[r].rows() - kse;
-    const Eigen::MatrixXd hss = h[r].topLeftCorner(kse, kse);
-    const Eigen::MatrixXd hsp = h[r].topRightCorner(kse, ko);
-    if (!spd_inverse(h[r].bottomRightCorner(ko, ko), own_inverse[r])) {
-      determined = false;
+  for (std::size_t r = 0; r < runs; ++r) {
+    const Eigen::Index ko = c.h[r].rows() - kse;
+    const Eigen::MatrixXd hss = c.h[r].topLeftCorner(kse, kse);
+    const Eigen::MatrixXd hsp = c.h[r].topRightCorner(kse, ko);
+    if (!spd_inverse(c.h[r].bottomRightCorner(ko, ko), c.own_inverse[r])) {
+      c.determined = false;
       continue;
     }
-    schur += hss - hsp * own_inverse[r] * hsp.transpose();
+    schur += hss - hsp * c.own_inverse[r] * hsp.transpose();
   }
-  Eigen::MatrixXd cov_ss;
-  determined = determined && spd_inverse(schur, cov_ss);
+  c.determined = c.determined && spd_inverse(schur, c.shared);
+  return c;
+}
 
+// 4. The shared estimates and every run's own, their costs and chi², at the joint optimum.
+JointFitResult joint_result(const std::vector<JointRunInput>& inputs, std::vector<FittedRun>& fits,
+                            const JointProblem& jp, const JointOutcome& joint,
+                            const JointCovariance& c) {
+  const std::vector<int>& shared = jp.shared;
+  const std::size_t ks = shared.size();
+  const auto kse = static_cast<Eigen::Index>(ks);
   JointFitResult out;
   out.iterations = joint.iterations;
   out.converged = joint.converged;
@@ -229,9 +234,9 @@ JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
   const FitSettings& s0 = *fits[0].settings;
   for (std::size_t j = 0; j < ks; ++j) {
     const auto je = static_cast<Eigen::Index>(j);
-    out.shared.push_back(
-        parameter_estimate(s0, shared[j], joint.x[0][shared[j]],
-                           determined ? std::optional<double>(cov_ss(je, je)) : std::nullopt, tq));
+    out.shared.push_back(parameter_estimate(
+        s0, shared[j], joint.x[0][shared[j]],
+        c.determined ? std::optional<double>(c.shared(je, je)) : std::nullopt, tq));
   }
 
   for (std::size_t r = 0; r < fits.size(); ++r) {
@@ -239,18 +244,18 @@ JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
     run.label = inputs[r].label;
     const LocalProblem& p = jp.runs[r];
     const ParamVector& x = joint.x[r];
-    const Eigen::Index ko = h[r].rows() - kse;
+    const Eigen::Index ko = c.h[r].rows() - kse;
     Eigen::MatrixXd cov_pp;
-    if (determined) {
+    if (c.determined) {
       // Cov_pp = H_pp^-1 + H_pp^-1 H_ps Cov_ss H_sp H_pp^-1
-      const Eigen::MatrixXd g = own_inverse[r] * h[r].topRightCorner(kse, ko).transpose();
-      cov_pp = own_inverse[r] + g * cov_ss * g.transpose();
+      const Eigen::MatrixXd g = c.own_inverse[r] * c.h[r].topRightCorner(kse, ko).transpose();
+      cov_pp = c.own_inverse[r] + g * c.shared * g.transpose();
     }
     for (int i : p.used) {
       const auto at = std::find(p.free.begin(), p.free.end(), i) - p.free.begin();
       std::optional<double> var;
-      if (determined && at < static_cast<long>(p.free.size()))
-        var = at < kse ? cov_ss(at, at) : cov_pp(at - kse, at - kse);
+      if (c.determined && at < static_cast<long>(p.free.size()))
+        var = at < kse ? c.shared(at, at) : cov_pp(at - kse, at - kse);
       run.parameters.push_back(parameter_estimate(*p.settings, i, x[i], var, tq));
     }
     run.cost = problem_cost(p, x);
@@ -267,6 +272,34 @@ JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
   }
   out.reduced_chi2 = out.dof > 0 ? out.chi2 / static_cast<double>(out.dof)
                                  : std::numeric_limits<double>::quiet_NaN();
+  return out;
+}
+
+}  // namespace
+
+JointFitResult fit_joint(const std::vector<JointRunInput>& inputs,
+                         const std::vector<std::string>& shared_names, int threads,
+                         FitObserver* observer) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  const std::vector<int> shared = shared_indices(shared_names);
+  if (inputs.empty()) throw std::invalid_argument("a joint fit needs at least one run");
+  for (const auto& in : inputs) {
+    try {
+      check_shared_parameters(in.settings, shared_names);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("run " + in.label + ": " + e.what());
+    }
+  }
+  const int workers = resolve_thread_count(threads);
+  const bool parallel_runs = inputs.size() >= static_cast<std::size_t>(workers);
+  std::vector<FittedRun> fits = fit_runs_alone(inputs, workers, parallel_runs, observer);
+  const JointProblem jp = joint_problem(fits, shared, workers, parallel_runs);
+  const JointOutcome joint = joint_local_fit(jp, observer);
+  if (observer && observer->cancelled()) throw FitError("interrupted");
+  if (!std::isfinite(joint.cost))
+    throw FitError("the joint fit failed (" + joint.termination + ")");
+  JointFitResult out = joint_result(inputs, fits, jp, joint, joint_covariance(jp, joint));
   out.time_s = std::chrono::duration<double>(clock::now() - t0).count();
   return out;
 }
