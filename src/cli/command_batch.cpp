@@ -357,7 +357,8 @@ int run_batch(const BatchRequest& o) {
   check_shared_option(o.shared, fit_settings(o.fit, o.fit.model));
   if (o.fit.report.empty()) throw InputError("batch needs --report DIR");
   const std::atomic<bool>* interrupted = install_interrupt_handler();
-  const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait);
+  const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait,
+                                 say_waiting_for(o.fit.report));
   std::error_code ec;
   if (fs::exists(o.fit.report, ec) && !fs::is_directory(o.fit.report, ec))
     throw InputError(o.fit.report, 0, 0, "--report: exists and is not a directory");

@@ -31,7 +31,8 @@ int run_compare(const app::CompareRequest& o) {
   ThreadBudget budget(o.fit.threads);
   const ThreadBudgetScope budget_scope(&budget);
   // Held for the whole run, so that two runs into one directory cannot interleave.
-  const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait);
+  const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait,
+                                 say_waiting_for(o.fit.report));
   check_report_directory_replaceable(o.fit.report);
   const Dataset data = load_dataset_csv(o.fit.data, o.fit.columns);
   ModelComparison c;

@@ -31,7 +31,7 @@ int run_fit(const app::FitRequest& o) {
   ThreadBudget budget(o.threads);
   const ThreadBudgetScope budget_scope(&budget);
   // Held for the whole run, so that two fits into one directory cannot interleave.
-  const ReportDirectoryLock lock(o.report, /*wait=*/!o.no_wait);
+  const ReportDirectoryLock lock(o.report, /*wait=*/!o.no_wait, say_waiting_for(o.report));
   check_report_directory_replaceable(o.report);
   const auto t_read = std::chrono::steady_clock::now();
   const Dataset data = load_dataset_csv(o.data, o.columns);

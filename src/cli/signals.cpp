@@ -3,8 +3,10 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <cstdio>
 
 #include "io/interruption.hpp"
+#include "io/text.hpp"
 
 namespace frictionid::cli {
 
@@ -27,6 +29,14 @@ const std::atomic<bool>* install_interrupt_handler() {
 
 bool show_progress(bool asked) {
   return asked || ::isatty(STDERR_FILENO);
+}
+
+std::function<void(const std::string&)> say_waiting_for(const std::string& dir) {
+  return [dir](const std::string& lock_file) {
+    std::fprintf(stderr,
+                 "frictionid: waiting for another run writing report directory %s (lock %s)\n",
+                 text::for_terminal(dir).c_str(), text::for_terminal(lock_file).c_str());
+  };
 }
 
 }  // namespace frictionid::cli

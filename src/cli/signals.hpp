@@ -1,7 +1,10 @@
-// The terminal's side of a long run: Ctrl-C as cancellation and whether to show progress.
+// The terminal's side of a long run: Ctrl-C as cancellation, whether to show progress, and the
+// line that says a run waits for another.
 #pragma once
 
 #include <atomic>
+#include <functional>
+#include <string>
 
 namespace frictionid::cli {
 
@@ -11,5 +14,9 @@ const std::atomic<bool>* install_interrupt_handler();
 
 // Whether runs show a progress line: asked for, or stderr is a terminal.
 bool show_progress(bool asked);
+
+// What a run says on stderr when it starts waiting for another run's lock on `dir`
+// (io/report_directory_lock.hpp's on_wait).
+std::function<void(const std::string&)> say_waiting_for(const std::string& dir);
 
 }  // namespace frictionid::cli

@@ -7,7 +7,6 @@
 
 #include <cerrno>
 #include <chrono>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
@@ -17,7 +16,6 @@
 
 #include "io/interruption.hpp"
 #include "io/report_location.hpp"
-#include "io/text.hpp"
 
 namespace frictionid {
 namespace {
@@ -37,7 +35,9 @@ std::set<std::string>& registry() {
 
 }  // namespace
 
-ReportDirectoryLock::ReportDirectoryLock(const std::string& dir, bool wait) {
+ReportDirectoryLock::ReportDirectoryLock(
+    const std::string& dir, bool wait,
+    const std::function<void(const std::string& lock_file)>& on_wait) {
   const ReportLocation loc = report_location(dir);
   std::error_code ec;
   fs::create_directories(loc.parent, ec);
@@ -68,14 +68,10 @@ ReportDirectoryLock::ReportDirectoryLock(const std::string& dir, bool wait) {
       if (!wait) {
         ::close(fd_);
         throw DirectoryLocked("another frictionid run is writing report directory " + dir +
-                                 " (lock " + lock_path.string() + "); without --no-wait it waits");
+                              " (lock " + lock_path.string() + "); without --no-wait it waits");
       }
       if (!said) {
-        std::fprintf(stderr,
-                     "frictionid: waiting for another run writing report directory %s (lock "
-                     "%s)\n",
-                     text::for_terminal(dir).c_str(),
-                     text::for_terminal(lock_path.string()).c_str());
+        if (on_wait) on_wait(lock_path.string());
         said = true;
       }
       if (interrupt_flag().load()) {

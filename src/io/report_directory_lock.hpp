@@ -6,6 +6,7 @@
 // the new one), so no lock file stays behind and no two runs hold "the" lock at once.
 #pragma once
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -20,11 +21,13 @@ class DirectoryLocked : public std::runtime_error {
 class ReportDirectoryLock {
  public:
   // wait = false: throws DirectoryLocked at once when another process holds the lock.
-  // wait = true: says so on stderr and waits, polling the interrupt flag (interruption.hpp),
-  // so Ctrl-C still ends the wait with Interrupted. Creates DIR's parent when missing.
-  // Taking the lock again in a process that already holds it is a no-op (write_report locks
-  // on its own; the CLI locks earlier, before the fit).
-  ReportDirectoryLock(const std::string& dir, bool wait);
+  // wait = true: calls on_wait(lock file) once, when it starts waiting (the front end says so
+  // where its user looks; io prints nothing), and waits, polling the interrupt flag
+  // (interruption.hpp), so Ctrl-C still ends the wait with Interrupted. Creates DIR's parent when
+  // missing. Taking the lock again in a process that already holds it is a no-op (write_report
+  // locks on its own; the CLI locks earlier, before the fit).
+  ReportDirectoryLock(const std::string& dir, bool wait,
+                      const std::function<void(const std::string& lock_file)>& on_wait = {});
   ~ReportDirectoryLock();
   ReportDirectoryLock(const ReportDirectoryLock&) = delete;
   ReportDirectoryLock& operator=(const ReportDirectoryLock&) = delete;
