@@ -7,6 +7,7 @@
 // sigma0 = delta(rho - 1), so m_k = 1 for every k and no radial integral is needed).
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -138,9 +139,16 @@ LawMoments<T> law_moments(const PressureLaw<T>& law) {
       r.m[5] = T(2) * r.m[3] / (n + T(3));
       return r;
     }
-    case PressureKind::Table:
-      for (int k = 0; k < 6; ++k) r.m[k] = integrate_law(law, k);
+    case PressureKind::Table: {
+      // A table's values are data, not parameters: its moments are plain numbers, kept on it.
+      const auto& m = law.table->moments([&law] {
+        std::array<double, 6> out;
+        for (int k = 0; k < 6; ++k) out[k] = value_of(integrate_law(law, k));
+        return out;
+      });
+      for (int k = 0; k < 6; ++k) r.m[k] = T(m[k]);
       return r;
+    }
     case PressureKind::Annulus: {
       // (1 - B^(k+1))/(k+1), without cancellation for B near 1.
       const double B = law.inner_radius();

@@ -14,7 +14,9 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -93,7 +95,19 @@ class PressureTable {
     return edge * interpolate(rho);
   }
 
+ // The law's moments m_0..m_5 (pressure_law.hpp), computed once by `compute` and kept: they
+  // depend only on the samples, and a fit asks for them at every evaluation of every start,
+  // which cost a pass over every sample each time (a 5000-sample table took minutes to fit).
+  template <typename Compute>
+  const std::array<double, 6>& moments(Compute compute) const {
+    std::call_once(moments_once_, [&] { moments_ = compute(); });
+    return moments_;
+  }
+
  private:
+  mutable std::once_flag moments_once_;
+  mutable std::array<double, 6> moments_{};
+
   double interpolate(double x) const {
     // Constant extension outside the samples: sigma0 is even in the spot's centre.
     if (x < rho_.front()) return g_.front();
