@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <frictionid/io/compare_report.hpp>
+#include "io/estimate_text.hpp"
 #include "io/html_page.hpp"
 #include "io/report_parts.hpp"
 #include "io/svg_plot.hpp"
@@ -152,10 +153,12 @@ void parameter_section(std::string& h, const ModelComparison& c) {
         row += "<td></td><td></td>";
         continue;
       }
+      // The value to the decimal place of its stderr's second digit (io/estimate_text.hpp).
+      const EstimateText e = estimate_text(p->value, p->fixed ? std::nullopt : p->std_error);
       row += fmt::format("<td class=\"num\" data-model=\"{}\" data-value=\"{}\">{}</td>",
-                         escape(f.model), p->value, num(p->value));
+                         escape(f.model), p->value, escape(e.value_alone()));
       row += p->fixed       ? "<td>fixed</td>"
-             : p->std_error ? num_cell(p->std_error)
+             : p->std_error ? html::text_cell(p->std_error, e.error_alone())
                             : "<td>not determined</td>";
     }
     if (!c.implied_by_exact.empty()) {

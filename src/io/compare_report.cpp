@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include <frictionid/io/report_writer.hpp>
+#include "io/estimate_text.hpp"
 #include "io/json_number.hpp"
 #include "io/report_parts.hpp"
 #include "io/report_transaction.hpp"
@@ -18,8 +19,9 @@ namespace {
 namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
+// Six digits with the exponent as "× 10ⁿ", "—" when not finite.
 std::string g6(double x) {
-  return std::isfinite(x) ? fmt::format("{:.6g}", x) : "—";
+  return std::isfinite(x) ? plain_number(x) : kNoNumber;
 }
 
 const ParameterEstimate* find_param(const FitResult& f, const std::string& name) {
@@ -158,7 +160,7 @@ std::string compare_markdown(const ModelComparison& c, const std::vector<std::st
       else if (p->fixed)
         md += " " + g6(p->value) + " (fixed) |";
       else if (p->std_error)
-        md += fmt::format(" {} ± {:.2g} |", g6(p->value), *p->std_error);
+        md += " " + estimate_text(p->value, p->std_error).joined() + " |";
       else
         md += " " + g6(p->value) + " (not determined) |";
     }

@@ -26,7 +26,7 @@ table { border-collapse: collapse; margin: 0.6em 0; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; }
 th { background: #f3f3f3; }
 table.sortable th { cursor: pointer; }
-td.num { text-align: right; font-variant-numeric: tabular-nums; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
 table.heat td { text-align: center; min-width: 3.5em; }
 figure.plot { margin: 1em 0; }
 figure.plot svg { max-width: 100%; height: auto; border: 1px solid #eee; }
@@ -74,6 +74,11 @@ std::string page_end() {
 std::string num_cell(const std::optional<double>& x) {
   if (!x || !std::isfinite(*x)) return "<td class=\"num\">" + num(x) + "</td>";
   return fmt::format("<td class=\"num\" data-value=\"{}\">{}</td>", *x, num(*x));
+}
+
+std::string text_cell(const std::optional<double>& x, const std::string& shown) {
+  if (!x || !std::isfinite(*x)) return "<td class=\"num\">" + svg::escape(shown) + "</td>";
+  return fmt::format("<td class=\"num\" data-value=\"{}\">{}</td>", *x, svg::escape(shown));
 }
 
 namespace {

@@ -17,6 +17,11 @@ std::string page_end();
 // for sorting and checks.
 std::string num_cell(const std::optional<double>& x);
 
+// A number cell that shows `shown` (an estimate rounded to its error, io/estimate_text.hpp) and
+// keeps the exact value in data-value as num_cell does; no data-value when x is absent or not
+// finite.
+std::string text_cell(const std::optional<double>& x, const std::string& shown);
+
 // User text inside a sentence or a list (a run label, a file name, a column's value) as HTML:
 // escaped (svg::escape), and inside <bdi> when it holds a bidirectional control (such as U+202E)
 // or a right-to-left letter, so that it cannot reorder the text around it. Other text cannot,

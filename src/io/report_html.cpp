@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "io/estimate_text.hpp"
 #include "io/html_page.hpp"
 #include "io/report_parts.hpp"
 #include "io/svg_plot.hpp"
@@ -19,6 +20,7 @@ namespace frictionid {
 namespace {
 
 using html::num_cell;
+using html::text_cell;
 using svg::escape;
 
 std::string correlation_colour(double c) {
@@ -77,9 +79,16 @@ void navigation(std::string& h, const std::vector<std::string>& headings) {
        "<a href=\"#glossary\">Glossary</a></nav>");
 }
 
+// The ends to the digit that tells them apart (io/estimate_text.hpp), exact in data-value.
 std::string interval_cells(const std::optional<std::array<double, 2>>& ci) {
-  return num_cell(ci ? std::optional<double>((*ci)[0]) : std::nullopt) +
-         num_cell(ci ? std::optional<double>((*ci)[1]) : std::nullopt);
+  if (!ci) return num_cell(std::nullopt) + num_cell(std::nullopt);
+  const auto [lo, hi] = interval_text((*ci)[0], (*ci)[1]);
+  return text_cell((*ci)[0], lo) + text_cell((*ci)[1], hi);
+}
+
+// A standard error alone, to 2 significant digits, exact in data-value.
+std::string stderr_cell(const std::optional<double>& s) {
+  return text_cell(s, stderr_text(s));
 }
 
 void parameter_section(std::string& h, const FitResult& r) {
@@ -95,11 +104,13 @@ void parameter_section(std::string& h, const FitResult& r) {
            "<tbody>");
   for (const auto& p : r.parameters) {
     std::string row = "<tr data-param=\"" + escape(p.name) + "\"><td>" + escape(p.name) + "</td>";
-    row += num_cell(p.value) + num_cell(p.std_error);
+    // The value to the decimal place of its stderr's second digit, the stderr to two digits.
+    const EstimateText e = estimate_text(p.value, p.std_error);
+    row += text_cell(p.value, e.value_alone()) + text_cell(p.std_error, e.error_alone());
     row += interval_cells(chosen_interval(r, p));
-    row += num_cell(p.std_error_sandwich);
+    row += stderr_cell(p.std_error_sandwich);
     if (r.bootstrap_replicates > 0)
-      row += num_cell(p.std_error_bootstrap) + interval_cells(p.ci95_bootstrap);
+      row += stderr_cell(p.std_error_bootstrap) + interval_cells(p.ci95_bootstrap);
     row += num_cell(p.initial) + num_cell(p.lower) + num_cell(p.upper);
     row += "<td>" +
            escape(parameter_note(p, "at a bound: the stderr is not meaningful",

@@ -20,7 +20,9 @@ const std::optional<std::array<double, 2>>& chosen_interval(const FitResult& r,
                                                             const ParameterEstimate& p);
 const char* interval_caption(const FitResult& r);
 
-// %.6g-style; never prints "nan" (the reports promise no NaN text): "—" for NaN or absent.
+// %.6g-style with the exponent as "× 10ⁿ" (plain_number in io/estimate_text.hpp); never prints
+// "nan" (the reports promise no NaN text): "—" for NaN or absent. For a number without an error;
+// estimates with one go through estimate_text.
 std::string num(double x);
 std::string num(const std::optional<double>& x);
 

@@ -6,15 +6,14 @@
 
 #include <fmt/format.h>
 
+#include "io/estimate_text.hpp"
 #include "io/report_parts.hpp"
 #include "io/svg_plot.hpp"
 
 namespace frictionid {
 
 std::string num(double x) {
-  if (std::isnan(x)) return "—";
-  if (std::isinf(x)) return x > 0 ? "+inf" : "-inf";
-  return fmt::format("{:.6g}", x);
+  return plain_number(x);
 }
 std::string num(const std::optional<double>& x) {
   return x ? num(*x) : "—";
