@@ -27,6 +27,7 @@ th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; }
 th { background: #f3f3f3; }
 table.sortable th { cursor: pointer; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+.estimate { white-space: nowrap; }
 table.heat td { text-align: center; min-width: 3.5em; }
 figure.plot { margin: 1em 0; }
 figure.plot svg { max-width: 100%; height: auto; border: 1px solid #eee; }

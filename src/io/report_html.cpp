@@ -48,6 +48,15 @@ void line(std::string& h, const std::string& s) {
   (h += s) += '\n';
 }
 
+// The answer at the top, one estimate per parameter, each kept on one line.
+void result_line(std::string& h, const FitResult& r) {
+  if (r.parameters.empty()) return;
+  std::string items;
+  for (const auto& item : result_items(r))
+    items += (items.empty() ? "" : "; ") + ("<span class=\"estimate\">" + escape(item) + "</span>");
+  line(h, "<p class=\"result\" id=\"result\"><strong>Result:</strong> " + items + ".</p>");
+}
+
 // Warnings first: they decide whether the numbers below can be used.
 void warnings_section(std::string& h, const FitResult& r) {
   if (r.warnings.empty()) {
@@ -269,6 +278,7 @@ std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& 
        fmt::format("<p class=\"summary\">{} rows; fitted channels: {}; loss: {}; solver: {}.</p>",
                    r.rows, join_channels(r.channels), escape(r.loss),
                    r.solver.converged ? "converged" : "<strong>not converged</strong>"));
+  result_line(h, r);
   warnings_section(h, r);
   const std::vector<std::string> headings = plot_headings(plots);
   navigation(h, headings);

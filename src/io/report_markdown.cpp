@@ -62,6 +62,14 @@ std::string report_markdown(const FitResult& r, const std::vector<std::string>& 
   line(fmt::format("{} rows; fitted channels: {}; loss: {}.", r.rows, join_channels(r.channels),
                    r.loss));
   line("");
+  // The answer first, before the details (value ± stderr, relative error).
+  if (!r.parameters.empty()) {
+    std::string result = "**Result:** ";
+    const auto items = result_items(r);
+    for (std::size_t i = 0; i < items.size(); ++i) result += (i ? "; " : "") + one_line(items[i]);
+    line(result + ".");
+    line("");
+  }
   line("The same report on one page, plots inline: [report.html](report.html).");
   line("");
 

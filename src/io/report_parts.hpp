@@ -26,6 +26,12 @@ const char* interval_caption(const FitResult& r);
 std::string num(double x);
 std::string num(const std::optional<double>& x);
 
+// The result line at the top of report.md and report.html, one item per parameter in FitResult
+// order: "f = 0.850039 ± 0.000072 (0.0085 %)" (estimate_text in io/estimate_text.hpp), or the
+// value with why it has no error: "h = 0 (fixed)", "a = 4 (at a bound)", "m = 7.5 (not
+// determined)". Plain text; the caller escapes it.
+std::vector<std::string> result_items(const FitResult& r);
+
 // The channel names joined by ", "; "none" for no channel.
 std::string join_channels(const std::vector<Channel>& cs);
 

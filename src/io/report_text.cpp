@@ -19,6 +19,25 @@ std::string num(const std::optional<double>& x) {
   return x ? num(*x) : "—";
 }
 
+std::vector<std::string> result_items(const FitResult& r) {
+  std::vector<std::string> items;
+  for (const auto& p : r.parameters) {
+    const bool has_error = !p.fixed && !p.at_bound && p.std_error;
+    const EstimateText e = estimate_text(p.value, has_error ? p.std_error : std::nullopt);
+    std::string item = p.name + " = " + e.joined();
+    if (p.fixed)
+      item += " (fixed)";
+    else if (p.at_bound)
+      item += " (at a bound)";
+    else if (!p.std_error)
+      item += " (not determined)";
+    else if (!e.relative.empty())
+      item += " (" + e.relative + ")";
+    items.push_back(item);
+  }
+  return items;
+}
+
 std::string join_channels(const std::vector<Channel>& cs) {
   std::string out;
   for (std::size_t i = 0; i < cs.size(); ++i)

@@ -112,6 +112,17 @@ TEST(ReportHtml, ValuesAreShownToTheDigitsTheirStderrSupports) {
       << html;
 }
 
+TEST(ReportHtml, ResultLineComesBeforeTheDetails) {
+  const Dataset d = make_dataset();
+  const std::string html = report_html(make_result(d), d);
+  const auto result = html.find(
+      "<p class=\"result\" id=\"result\"><strong>Result:</strong> <span class=\"estimate\">f = "
+      "0.4999 ± 0.0012 (0.25 %)</span>; <span class=\"estimate\">kappa = 1 (fixed)</span>.</p>");
+  ASSERT_NE(result, std::string::npos) << html;
+  EXPECT_LT(result, html.find("id=\"warnings\""));
+  EXPECT_LT(result, html.find("id=\"parameters\""));
+}
+
 TEST(ReportHtml, WarningsComeFirstAndAreEscaped) {
   const Dataset d = make_dataset();
   const std::string html = report_html(make_result(d), d);

@@ -345,6 +345,16 @@ TEST(ReportJson, NonFiniteNumbersBecomeNullAndNoNanTextAnywhere) {
   EXPECT_FALSE(mentions_nan(slurp(dir.path() / "report.md")));
 }
 
+TEST(ReportMarkdown, ResultLineComesFirstWithEveryParameter) {
+  const Dataset d = make_dataset();
+  const std::string md = report_markdown(make_result(d));
+  const auto result = md.find(
+      "**Result:** kappa = 1.250 ± 0.062 (5.0 %); f = 0.3125 ± 0.0039 (1.2 %); h = 0 (fixed); "
+      "a = 4 (at a bound); m = 7.5 (not determined).\n");
+  ASSERT_NE(result, std::string::npos) << md;
+  EXPECT_LT(result, md.find("## Parameters"));
+}
+
 TEST(ReportMarkdown, HasTitleTableNotesWarningsCorrelationAndLinks) {
   const Dataset d = make_dataset();
   FitResult r = make_result(d);
