@@ -192,12 +192,13 @@ void closing_sections(std::string& h, const ModelComparison& c,
 
 }  // namespace
 
-std::string compare_html_page(const ModelComparison& c, const std::vector<ReportPlot>& plots) {
+std::string compare_html_page(const ModelComparison& c, const std::vector<ReportPlot>& plots,
+                              const Provenance& provenance) {
   std::string h = html::page_start("frictionid compare");
   line(h, "<h1>frictionid compare</h1>");
   if (c.fits.empty()) {
     line(h, "<p>No models were fitted.</p>");
-    return h + html::page_end();
+    return h + html::provenance_section(provenance) + html::page_end();
   }
   line(h,
        fmt::format("<p class=\"summary\">{} rows; the same rows, channels and whitening for every "
@@ -207,11 +208,11 @@ std::string compare_html_page(const ModelComparison& c, const std::vector<Report
   quality_section(h, c);
   parameter_section(h, c);
   closing_sections(h, c, plots);
-  return h + html::page_end();
+  return h + html::provenance_section(provenance) + html::page_end();
 }
 
-std::string compare_html(const ModelComparison& c, const Dataset& d) {
-  return compare_html_page(c, compare_plots(c, d));
+std::string compare_html(const ModelComparison& c, const Dataset& d, const Provenance& p) {
+  return compare_html_page(c, compare_plots(c, d), p);
 }
 
 }  // namespace frictionid

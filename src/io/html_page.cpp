@@ -26,6 +26,7 @@ table { border-collapse: collapse; margin: 0.6em 0; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; }
 th { background: #f3f3f3; }
 table.sortable th { cursor: pointer; }
+dl.traceability code { overflow-wrap: anywhere; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
 .estimate { white-space: nowrap; }
 table.heat td { text-align: center; min-width: 3.5em; }
@@ -80,6 +81,13 @@ std::string num_cell(const std::optional<double>& x) {
 std::string text_cell(const std::optional<double>& x, const std::string& shown) {
   if (!x || !std::isfinite(*x)) return "<td class=\"num\">" + svg::escape(shown) + "</td>";
   return fmt::format("<td class=\"num\" data-value=\"{}\">{}</td>", *x, svg::escape(shown));
+}
+
+std::string provenance_section(const Provenance& p) {
+  std::string h = "<h2 id=\"traceability\">Traceability</h2>\n<dl class=\"traceability\">\n";
+  for (const auto& [label, text] : provenance_lines(p))
+    h += "<dt>" + svg::escape(label) + "</dt><dd><code>" + isolated(text) + "</code></dd>\n";
+  return h + "</dl>\n";
 }
 
 namespace {

@@ -85,7 +85,7 @@ void navigation(std::string& h, const std::vector<std::string>& headings) {
     line(h, fmt::format("<a href=\"#{}\">{}</a>", anchor(hd), escape(hd)));
   line(h,
        "<a href=\"#statistics\">Statistics</a><a href=\"#solver\">Search and solver</a>"
-       "<a href=\"#glossary\">Glossary</a></nav>");
+       "<a href=\"#traceability\">Traceability</a><a href=\"#glossary\">Glossary</a></nav>");
 }
 
 // The ends to the digit that tells them apart (io/estimate_text.hpp), exact in data-value.
@@ -266,7 +266,8 @@ void glossary_section(std::string& h) {
 
 }  // namespace
 
-std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots) {
+std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots,
+                             const Provenance& provenance) {
   std::string h;
   h.reserve(64 * 1024);
   const std::string title =
@@ -287,6 +288,7 @@ std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& 
   plot_sections(h, plots, headings);
   statistics_section(h, r);
   solver_section(h, r);
+  h += html::provenance_section(provenance);
   glossary_section(h);
   h += html::page_end();
   return h;

@@ -52,7 +52,8 @@ std::string report_markdown(const FitResult& r) {
   return report_markdown(r, default_plot_files(r));
 }
 
-std::string report_markdown(const FitResult& r, const std::vector<std::string>& plot_files) {
+std::string report_markdown(const FitResult& r, const std::vector<std::string>& plot_files,
+                            const Provenance& provenance) {
   std::string md;
   auto line = [&md](const std::string& s) { (md += s) += '\n'; };
 
@@ -167,6 +168,8 @@ std::string report_markdown(const FitResult& r, const std::vector<std::string>& 
     }
   }
   line("");
+
+  md += provenance_markdown(provenance);
 
   line("## Plots");
   line("");

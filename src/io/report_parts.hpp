@@ -75,12 +75,18 @@ std::vector<ReportPlot> make_plots(const FitResult& r, const Dataset& d, const R
 std::string plot_figure(const ReportPlot& p);
 
 // report.html from the plots make_plots gave.
-std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots);
+std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots,
+                             const Provenance& p = {});
 
 // Per channel every compared model over the measured data (compare_<channel>.svg), and
 // compare.html from them.
 std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d);
-std::string compare_html_page(const ModelComparison& c, const std::vector<ReportPlot>& plots);
+std::string compare_html_page(const ModelComparison& c, const std::vector<ReportPlot>& plots,
+                              const Provenance& p = {});
+
+// The provenance (io/provenance.hpp) as a Markdown section "## Traceability" with one bullet per
+// line, ending in an empty line.
+std::string provenance_markdown(const Provenance& p);
 
 // report.json, report.md, report.html and the plots written into dir (which exists; no
 // transaction, the caller holds one); returns the file names relative to dir in that order.

@@ -38,6 +38,17 @@ std::vector<std::string> result_items(const FitResult& r) {
   return items;
 }
 
+std::string provenance_markdown(const Provenance& p) {
+  std::string md = "## Traceability\n\n";
+  for (const auto& [label, text] : provenance_lines(p)) {
+    std::string one_line = text;
+    for (char& ch : one_line)
+      if (ch == '\n' || ch == '\r') ch = ' ';
+    md += "- " + label + ": " + one_line + "\n";
+  }
+  return md + "\n";
+}
+
 std::string join_channels(const std::vector<Channel>& cs) {
   std::string out;
   for (std::size_t i = 0; i < cs.size(); ++i)

@@ -482,14 +482,14 @@ std::string summary_html(const std::vector<SummaryRow>& rows, const SummaryHtmlO
                       failed > 0 ? "<strong>" : "", failed > 0 ? "</strong>" : ""));
   if (rows.empty()) {
     line(h, "<p>No runs.</p>");
-    return h + html::page_end();
+    return h + html::provenance_section(o.provenance) + html::page_end();
   }
   line(h, "<nav><a href=\"#runs-heading\">Runs</a><a href=\"#trends\">Trends</a></nav>");
   problems_section(h, rows);
   runs_section(h, rows, o);
   line(h, std::string("<script>") + kSortScript + "</script>");
   trends_section(h, rows, o.trend_x);
-  return h + html::page_end();
+  return h + html::provenance_section(o.provenance) + html::page_end();
 }
 
 }  // namespace frictionid
