@@ -82,6 +82,9 @@ struct FitRequest {
   bool progress = false;
   std::vector<std::string> plot_x;  // report: channels also against these columns
   std::string color_by;             // report: colours of the collapse plots
+  // The command as typed (text::command_line), printed in the reports' provenance; empty from
+  // Python. Compare and batch carry theirs here too.
+  std::string command_line;
 };
 
 struct CompareRequest {

@@ -24,6 +24,8 @@
 #include "app/batch_shared_fit.hpp"
 #include "app/batch_warm_start.hpp"
 #include "app/fit_request.hpp"
+#include "app/report_provenance.hpp"
+#include "app/request_json.hpp"
 #include "app/requests.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
@@ -49,17 +51,28 @@ struct BatchContext {
   const std::atomic<bool>* interrupted = nullptr;
 };
 
+// A run's report names the batch's command, the run's own resolved options and the bytes of its
+// file as the batch planned them (the fingerprint the journal keys on).
+Provenance run_provenance(const BatchRequest& o, const BatchRun& run) {
+  Provenance p;
+  p.command_line = o.fit.command_line;
+  p.options = fit_request_json(run.options);
+  p.inputs.push_back(InputFile{run.path, run.input.size, run.input.sha256});
+  return p;
+}
+
 void write_run_report(const BatchContext& c, const BatchRun& run, const FitResult& r,
                       const Dataset& data) {
   const fs::path dir = c.dir / "runs" / run.directory;
   if (c.options.per_run_reports == "full") {
     ReportOptions options;  // as many threads as each run fits on
     options.threads = c.fit_threads;
+    options.provenance = run_provenance(c.options, run);
     write_report(dir.string(), r, data, options);
   } else if (c.options.per_run_reports == "json") {
     fs::create_directories(dir);
-    const auto json =
-        report_json(r).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+    const auto json = report_json(r, run_provenance(c.options, run))
+                          .dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
     // Durable with the journal's next sync (batch_journal.hpp), not one flush per run.
     write_file_atomically((dir / "report.json").string(), json + "\n", Flush::Later);
   }
@@ -114,6 +127,14 @@ SummaryHtmlOptions summary_page_options(const BatchRequest& o, const std::vector
                   : o.per_run_reports == "json" ? RunReports::Json
                                                 : RunReports::None;
   for (const auto& run : runs) h.run_directories[run.label] = run.directory;
+  // The batch's command and options, and every file its runs read, each once.
+  h.provenance.command_line = o.fit.command_line;
+  h.provenance.options = fit_request_json(o.fit);
+  for (const auto& run : runs) {
+    const bool seen = std::any_of(h.provenance.inputs.begin(), h.provenance.inputs.end(),
+                                  [&](const InputFile& f) { return f.path == run.path; });
+    if (!seen) h.provenance.inputs.push_back(InputFile{run.path, run.input.size, run.input.sha256});
+  }
   return h;
 }
 

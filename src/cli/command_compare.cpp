@@ -7,6 +7,7 @@
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/model_comparison.hpp>
 #include "app/fit_request.hpp"
+#include "app/report_provenance.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/signals.hpp"
@@ -46,7 +47,9 @@ int run_compare(const app::CompareRequest& o) {
   } catch (const std::invalid_argument& e) {
     throw InputError(o.fit.data, 0, 0, e.what());
   }
-  const auto files = write_compare_report(o.fit.report, c, data);
+  Provenance provenance = app::report_provenance(o.fit, {o.fit.data});
+  provenance.options["models"] = o.models;
+  const auto files = write_compare_report(o.fit.report, c, data, provenance);
   std::printf("%-10s %14s %14s %10s\n", "model", "chi2", "AIC", "dAIC");
   for (std::size_t k = 0; k < c.fits.size(); ++k)
     std::printf("%-10s %14.6g %14.6g %10.4g\n", c.fits[k].model.c_str(), c.fits[k].chi2,

@@ -11,6 +11,7 @@
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/report_writer.hpp>
 #include "app/fit_request.hpp"
+#include "app/report_provenance.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "cli/signals.hpp"
@@ -40,6 +41,7 @@ int run_fit(const app::FitRequest& o) {
   report_options.plot_x = o.plot_x;
   report_options.color_by = o.color_by;
   report_options.threads = o.threads;
+  report_options.provenance = app::report_provenance(o, {o.data});
   try {
     check_report_columns(data, report_options);  // before the fit, not after it
   } catch (const std::invalid_argument& e) {

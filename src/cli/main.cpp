@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <exception>
 #include <string>
+#include <vector>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -328,6 +329,13 @@ int main(int argc, char** argv) {
                  frictionid::text::for_terminal(e.what()).c_str());
     return kExitBadInput;
   }
+
+  // The reports name the command that made them; "frictionid" rather than argv[0], which may
+  // be a path into a build directory.
+  std::vector<std::string> words{"frictionid"};
+  for (int i = 1; i < argc; ++i) words.emplace_back(argv[i]);
+  fit.command_line = compare.fit.command_line = batch.fit.command_line =
+      frictionid::text::command_line(words);
 
   try {
     if (app.got_subcommand("coefficients"))

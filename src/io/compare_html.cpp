@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <frictionid/io/compare_report.hpp>
+#include "io/estimate_text.hpp"
 #include "io/html_page.hpp"
 #include "io/report_parts.hpp"
 #include "io/svg_plot.hpp"
@@ -152,10 +153,12 @@ void parameter_section(std::string& h, const ModelComparison& c) {
         row += "<td></td><td></td>";
         continue;
       }
+      // The value to the decimal place of its stderr's second digit (io/estimate_text.hpp).
+      const EstimateText e = estimate_text(p->value, p->fixed ? std::nullopt : p->std_error);
       row += fmt::format("<td class=\"num\" data-model=\"{}\" data-value=\"{}\">{}</td>",
-                         escape(f.model), p->value, num(p->value));
+                         escape(f.model), p->value, escape(e.value_alone()));
       row += p->fixed       ? "<td>fixed</td>"
-             : p->std_error ? num_cell(p->std_error)
+             : p->std_error ? html::text_cell(p->std_error, e.error_alone())
                             : "<td>not determined</td>";
     }
     if (!c.implied_by_exact.empty()) {
@@ -189,12 +192,13 @@ void closing_sections(std::string& h, const ModelComparison& c,
 
 }  // namespace
 
-std::string compare_html_page(const ModelComparison& c, const std::vector<ReportPlot>& plots) {
+std::string compare_html_page(const ModelComparison& c, const std::vector<ReportPlot>& plots,
+                              const Provenance& provenance) {
   std::string h = html::page_start("frictionid compare");
   line(h, "<h1>frictionid compare</h1>");
   if (c.fits.empty()) {
     line(h, "<p>No models were fitted.</p>");
-    return h + html::page_end();
+    return h + html::provenance_section(provenance) + html::page_end();
   }
   line(h,
        fmt::format("<p class=\"summary\">{} rows; the same rows, channels and whitening for every "
@@ -204,11 +208,11 @@ std::string compare_html_page(const ModelComparison& c, const std::vector<Report
   quality_section(h, c);
   parameter_section(h, c);
   closing_sections(h, c, plots);
-  return h + html::page_end();
+  return h + html::provenance_section(provenance) + html::page_end();
 }
 
-std::string compare_html(const ModelComparison& c, const Dataset& d) {
-  return compare_html_page(c, compare_plots(c, d));
+std::string compare_html(const ModelComparison& c, const Dataset& d, const Provenance& p) {
+  return compare_html_page(c, compare_plots(c, d), p);
 }
 
 }  // namespace frictionid

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include <frictionid/io/report_writer.hpp>
+#include "io/estimate_text.hpp"
 #include "io/json_number.hpp"
 #include "io/report_parts.hpp"
 #include "io/report_transaction.hpp"
@@ -18,8 +19,9 @@ namespace {
 namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
+// Six digits with the exponent as "× 10ⁿ", "—" when not finite.
 std::string g6(double x) {
-  return std::isfinite(x) ? fmt::format("{:.6g}", x) : "—";
+  return std::isfinite(x) ? plain_number(x) : kNoNumber;
 }
 
 const ParameterEstimate* find_param(const FitResult& f, const std::string& name) {
@@ -68,7 +70,7 @@ std::vector<std::string> coefficient_notes(const ModelComparison& c) {
   return notes;
 }
 
-nlohmann::ordered_json compare_json(const ModelComparison& c) {
+nlohmann::ordered_json compare_json(const ModelComparison& c, const Provenance& provenance) {
   ojson j;
   j["rows"] = c.fits.empty() ? 0 : c.fits.front().rows;
   ojson channels = ojson::array();
@@ -110,12 +112,14 @@ nlohmann::ordered_json compare_json(const ModelComparison& c) {
     if (c.implied_by_exact.count(name)) implied[name] = json_number(c.implied_by_exact.at(name));
   j["implied_by_exact"] = implied;
   j["notes"] = coefficient_notes(c);
+  j["provenance"] = provenance_json(provenance);
   return j;
 }
 
-std::string compare_markdown(const ModelComparison& c, const std::vector<std::string>& plots) {
+std::string compare_markdown(const ModelComparison& c, const std::vector<std::string>& plots,
+                             const Provenance& provenance) {
   std::string md = "# frictionid compare\n\n";
-  if (c.fits.empty()) return md + "No models were fitted.\n";
+  if (c.fits.empty()) return md + "No models were fitted.\n\n" + provenance_markdown(provenance);
   const FitResult& first = c.fits.front();
   md += fmt::format(
       "{} rows; the same rows, channels and whitening for every model. Preferred "
@@ -158,7 +162,7 @@ std::string compare_markdown(const ModelComparison& c, const std::vector<std::st
       else if (p->fixed)
         md += " " + g6(p->value) + " (fixed) |";
       else if (p->std_error)
-        md += fmt::format(" {} ± {:.2g} |", g6(p->value), *p->std_error);
+        md += " " + estimate_text(p->value, p->std_error).joined() + " |";
       else
         md += " " + g6(p->value) + " (not determined) |";
     }
@@ -173,6 +177,7 @@ std::string compare_markdown(const ModelComparison& c, const std::vector<std::st
   md += "\nThe same comparison on one page, plots inline: [compare.html](compare.html).\n";
   md += "\n## Per-model reports\n\n";
   for (const auto& f : c.fits) md += fmt::format("- [{0}]({0}/report.md)\n", f.model);
+  md += "\n" + provenance_markdown(provenance);
   if (!plots.empty()) {
     md +=
         "\n## Plots\n\nEach channel divided by N (forces) or N R (torques) and by its parity "
@@ -183,7 +188,7 @@ std::string compare_markdown(const ModelComparison& c, const std::vector<std::st
 }
 
 std::vector<std::string> write_compare_report(const std::string& dir, const ModelComparison& c,
-                                              const Dataset& d) {
+                                              const Dataset& d, const Provenance& provenance) {
   // Every file of the comparison, the models' reports too, in one transaction.
   ReportTransaction transaction(dir);
   const fs::path out = transaction.staging();
@@ -195,18 +200,21 @@ std::vector<std::string> write_compare_report(const std::string& dir, const Mode
     if (ec)
       throw std::runtime_error("cannot create " + (fs::path(dir) / f.model).string() + ": " +
                                ec.message());
-    for (const auto& w : write_report_files(sub, f, d))
+    ReportOptions model_options;
+    model_options.provenance = provenance;
+    for (const auto& w : write_report_files(sub, f, d, model_options))
       names.push_back((fs::path(f.model) / w).string());
   }
-  write_staged_file(out / "compare.json",
-                    compare_json(c).dump(2, ' ', false, ojson::error_handler_t::replace) + "\n");
+  write_staged_file(
+      out / "compare.json",
+      compare_json(c, provenance).dump(2, ' ', false, ojson::error_handler_t::replace) + "\n");
   names.push_back("compare.json");
 
   const std::vector<ReportPlot> plot_list = compare_plots(c, d);
   std::vector<std::string> plots;
   for (const auto& p : plot_list) plots.push_back(p.file);
-  write_staged_pages(out, "compare", compare_markdown(c, plots), compare_html_page(c, plot_list),
-                     plot_list, names);
+  write_staged_pages(out, "compare", compare_markdown(c, plots, provenance),
+                     compare_html_page(c, plot_list, provenance), plot_list, names);
   transaction.commit();
   std::vector<std::string> written;
   for (const auto& n : names) written.push_back((fs::path(dir) / n).string());

@@ -26,7 +26,9 @@ table { border-collapse: collapse; margin: 0.6em 0; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; }
 th { background: #f3f3f3; }
 table.sortable th { cursor: pointer; }
-td.num { text-align: right; font-variant-numeric: tabular-nums; }
+dl.traceability code { overflow-wrap: anywhere; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+.estimate { white-space: nowrap; }
 table.heat td { text-align: center; min-width: 3.5em; }
 figure.plot { margin: 1em 0; }
 figure.plot svg { max-width: 100%; height: auto; border: 1px solid #eee; }
@@ -74,6 +76,18 @@ std::string page_end() {
 std::string num_cell(const std::optional<double>& x) {
   if (!x || !std::isfinite(*x)) return "<td class=\"num\">" + num(x) + "</td>";
   return fmt::format("<td class=\"num\" data-value=\"{}\">{}</td>", *x, num(*x));
+}
+
+std::string text_cell(const std::optional<double>& x, const std::string& shown) {
+  if (!x || !std::isfinite(*x)) return "<td class=\"num\">" + svg::escape(shown) + "</td>";
+  return fmt::format("<td class=\"num\" data-value=\"{}\">{}</td>", *x, svg::escape(shown));
+}
+
+std::string provenance_section(const Provenance& p) {
+  std::string h = "<h2 id=\"traceability\">Traceability</h2>\n<dl class=\"traceability\">\n";
+  for (const auto& [label, text] : provenance_lines(p))
+    h += "<dt>" + svg::escape(label) + "</dt><dd><code>" + isolated(text) + "</code></dd>\n";
+  return h + "</dl>\n";
 }
 
 namespace {

@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include <frictionid/io/provenance.hpp>
+
 namespace frictionid::html {
 
 // Doctype, head with title and inline style, opening <body>.
@@ -16,6 +18,16 @@ std::string page_end();
 // value (shortest text that reads back to the same double, as in the JSON reports) in data-value
 // for sorting and checks.
 std::string num_cell(const std::optional<double>& x);
+
+// A number cell that shows `shown` (an estimate rounded to its error, io/estimate_text.hpp) and
+// keeps the exact value in data-value as num_cell does; no data-value when x is absent or not
+// finite.
+std::string text_cell(const std::optional<double>& x, const std::string& shown);
+
+// The provenance (io/provenance.hpp) as a section "Traceability" (id "traceability"): a heading
+// and one definition per line, user text escaped. Not "provenance" on a page: the pages promise
+// no "nan" in their text, and tests look for those letters.
+std::string provenance_section(const Provenance& p);
 
 // User text inside a sentence or a list (a run label, a file name, a column's value) as HTML:
 // escaped (svg::escape), and inside <bdi> when it holds a bidirectional control (such as U+202E)

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "io/estimate_text.hpp"
 #include "io/html_page.hpp"
 #include "io/report_parts.hpp"
 #include "io/svg_plot.hpp"
@@ -19,6 +20,7 @@ namespace frictionid {
 namespace {
 
 using html::num_cell;
+using html::text_cell;
 using svg::escape;
 
 std::string correlation_colour(double c) {
@@ -44,6 +46,15 @@ std::string anchor(const std::string& s) {
 // Each section below appends its lines to the page h; line() adds one and its newline.
 void line(std::string& h, const std::string& s) {
   (h += s) += '\n';
+}
+
+// The answer at the top, one estimate per parameter, each kept on one line.
+void result_line(std::string& h, const FitResult& r) {
+  if (r.parameters.empty()) return;
+  std::string items;
+  for (const auto& item : result_items(r))
+    items += (items.empty() ? "" : "; ") + ("<span class=\"estimate\">" + escape(item) + "</span>");
+  line(h, "<p class=\"result\" id=\"result\"><strong>Result:</strong> " + items + ".</p>");
 }
 
 // Warnings first: they decide whether the numbers below can be used.
@@ -74,12 +85,19 @@ void navigation(std::string& h, const std::vector<std::string>& headings) {
     line(h, fmt::format("<a href=\"#{}\">{}</a>", anchor(hd), escape(hd)));
   line(h,
        "<a href=\"#statistics\">Statistics</a><a href=\"#solver\">Search and solver</a>"
-       "<a href=\"#glossary\">Glossary</a></nav>");
+       "<a href=\"#traceability\">Traceability</a><a href=\"#glossary\">Glossary</a></nav>");
 }
 
+// The ends to the digit that tells them apart (io/estimate_text.hpp), exact in data-value.
 std::string interval_cells(const std::optional<std::array<double, 2>>& ci) {
-  return num_cell(ci ? std::optional<double>((*ci)[0]) : std::nullopt) +
-         num_cell(ci ? std::optional<double>((*ci)[1]) : std::nullopt);
+  if (!ci) return num_cell(std::nullopt) + num_cell(std::nullopt);
+  const auto [lo, hi] = interval_text((*ci)[0], (*ci)[1]);
+  return text_cell((*ci)[0], lo) + text_cell((*ci)[1], hi);
+}
+
+// A standard error alone, to 2 significant digits, exact in data-value.
+std::string stderr_cell(const std::optional<double>& s) {
+  return text_cell(s, stderr_text(s));
 }
 
 void parameter_section(std::string& h, const FitResult& r) {
@@ -95,11 +113,13 @@ void parameter_section(std::string& h, const FitResult& r) {
            "<tbody>");
   for (const auto& p : r.parameters) {
     std::string row = "<tr data-param=\"" + escape(p.name) + "\"><td>" + escape(p.name) + "</td>";
-    row += num_cell(p.value) + num_cell(p.std_error);
+    // The value to the decimal place of its stderr's second digit, the stderr to two digits.
+    const EstimateText e = estimate_text(p.value, p.std_error);
+    row += text_cell(p.value, e.value_alone()) + text_cell(p.std_error, e.error_alone());
     row += interval_cells(chosen_interval(r, p));
-    row += num_cell(p.std_error_sandwich);
+    row += stderr_cell(p.std_error_sandwich);
     if (r.bootstrap_replicates > 0)
-      row += num_cell(p.std_error_bootstrap) + interval_cells(p.ci95_bootstrap);
+      row += stderr_cell(p.std_error_bootstrap) + interval_cells(p.ci95_bootstrap);
     row += num_cell(p.initial) + num_cell(p.lower) + num_cell(p.upper);
     row += "<td>" +
            escape(parameter_note(p, "at a bound: the stderr is not meaningful",
@@ -246,7 +266,8 @@ void glossary_section(std::string& h) {
 
 }  // namespace
 
-std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots) {
+std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots,
+                             const Provenance& provenance) {
   std::string h;
   h.reserve(64 * 1024);
   const std::string title =
@@ -258,6 +279,7 @@ std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& 
        fmt::format("<p class=\"summary\">{} rows; fitted channels: {}; loss: {}; solver: {}.</p>",
                    r.rows, join_channels(r.channels), escape(r.loss),
                    r.solver.converged ? "converged" : "<strong>not converged</strong>"));
+  result_line(h, r);
   warnings_section(h, r);
   const std::vector<std::string> headings = plot_headings(plots);
   navigation(h, headings);
@@ -266,6 +288,7 @@ std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& 
   plot_sections(h, plots, headings);
   statistics_section(h, r);
   solver_section(h, r);
+  h += html::provenance_section(provenance);
   glossary_section(h);
   h += html::page_end();
   return h;

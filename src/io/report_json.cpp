@@ -13,6 +13,12 @@ ojson interval(const std::optional<std::array<double, 2>>& ci) {
 }
 }  // namespace
 
+nlohmann::ordered_json report_json(const FitResult& r, const Provenance& p) {
+  ojson j = report_json(r);
+  j["provenance"] = provenance_json(p);
+  return j;
+}
+
 nlohmann::ordered_json report_json(const FitResult& r) {
   ojson j = ojson::object();
   j["model"] = r.model;

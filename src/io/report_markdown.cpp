@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "io/estimate_text.hpp"
 #include "io/report_parts.hpp"
 
 namespace frictionid {
@@ -51,7 +52,8 @@ std::string report_markdown(const FitResult& r) {
   return report_markdown(r, default_plot_files(r));
 }
 
-std::string report_markdown(const FitResult& r, const std::vector<std::string>& plot_files) {
+std::string report_markdown(const FitResult& r, const std::vector<std::string>& plot_files,
+                            const Provenance& provenance) {
   std::string md;
   auto line = [&md](const std::string& s) { (md += s) += '\n'; };
 
@@ -61,6 +63,14 @@ std::string report_markdown(const FitResult& r, const std::vector<std::string>& 
   line(fmt::format("{} rows; fitted channels: {}; loss: {}.", r.rows, join_channels(r.channels),
                    r.loss));
   line("");
+  // The answer first, before the details (value ± stderr, relative error).
+  if (!r.parameters.empty()) {
+    std::string result = "**Result:** ";
+    const auto items = result_items(r);
+    for (std::size_t i = 0; i < items.size(); ++i) result += (i ? "; " : "") + one_line(items[i]);
+    line(result + ".");
+    line("");
+  }
   line("The same report on one page, plots inline: [report.html](report.html).");
   line("");
 
@@ -68,18 +78,20 @@ std::string report_markdown(const FitResult& r, const std::vector<std::string>& 
   line("");
   const bool boot = r.bootstrap_replicates > 0;
   auto interval = [](const std::optional<std::array<double, 2>>& ci) {
-    return ci ? fmt::format("[{}, {}]", num((*ci)[0]), num((*ci)[1])) : std::string("—");
+    if (!ci) return std::string("—");
+    const auto [lo, hi] = interval_text((*ci)[0], (*ci)[1]);
+    return "[" + lo + ", " + hi + "]";
   };
   line(std::string("| name | value ± stderr | 95% CI | sandwich stderr |") +
        (boot ? " bootstrap stderr | bootstrap 95% CI |" : "") + " initial | bounds | note |");
   line(std::string("|---|---|---|---|") + (boot ? "---|---|" : "") + "---|---|---|");
   for (const auto& p : r.parameters) {
-    std::string value = num(p.value);
-    if (p.std_error) value += " ± " + num(p.std_error);
-    std::string row = fmt::format("| {} | {} | {} | {} |", cell(p.name), value,
-                                  interval(chosen_interval(r, p)), num(p.std_error_sandwich));
+    std::string row = fmt::format(
+        "| {} | {} | {} | {} |", cell(p.name), estimate_text(p.value, p.std_error).joined(),
+        interval(chosen_interval(r, p)), stderr_text(p.std_error_sandwich));
     if (boot)
-      row += fmt::format(" {} | {} |", num(p.std_error_bootstrap), interval(p.ci95_bootstrap));
+      row +=
+          fmt::format(" {} | {} |", stderr_text(p.std_error_bootstrap), interval(p.ci95_bootstrap));
     line(row +
          fmt::format(" {} | [{}, {}] | {} |", num(p.initial), num(p.lower), num(p.upper),
                      parameter_note(p, "at bound (stderr not meaningful)", "not determined")));
@@ -156,6 +168,8 @@ std::string report_markdown(const FitResult& r, const std::vector<std::string>& 
     }
   }
   line("");
+
+  md += provenance_markdown(provenance);
 
   line("## Plots");
   line("");

@@ -20,9 +20,17 @@ const std::optional<std::array<double, 2>>& chosen_interval(const FitResult& r,
                                                             const ParameterEstimate& p);
 const char* interval_caption(const FitResult& r);
 
-// %.6g-style; never prints "nan" (the reports promise no NaN text): "—" for NaN or absent.
+// %.6g-style with the exponent as "× 10ⁿ" (plain_number in io/estimate_text.hpp); never prints
+// "nan" (the reports promise no NaN text): "—" for NaN or absent. For a number without an error;
+// estimates with one go through estimate_text.
 std::string num(double x);
 std::string num(const std::optional<double>& x);
+
+// The result line at the top of report.md and report.html, one item per parameter in FitResult
+// order: "f = 0.850039 ± 0.000072 (0.0085 %)" (estimate_text in io/estimate_text.hpp), or the
+// value with why it has no error: "h = 0 (fixed)", "a = 4 (at a bound)", "m = 7.5 (not
+// determined)". Plain text; the caller escapes it.
+std::vector<std::string> result_items(const FitResult& r);
 
 // The channel names joined by ", "; "none" for no channel.
 std::string join_channels(const std::vector<Channel>& cs);
@@ -67,12 +75,18 @@ std::vector<ReportPlot> make_plots(const FitResult& r, const Dataset& d, const R
 std::string plot_figure(const ReportPlot& p);
 
 // report.html from the plots make_plots gave.
-std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots);
+std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots,
+                             const Provenance& p = {});
 
 // Per channel every compared model over the measured data (compare_<channel>.svg), and
 // compare.html from them.
 std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d);
-std::string compare_html_page(const ModelComparison& c, const std::vector<ReportPlot>& plots);
+std::string compare_html_page(const ModelComparison& c, const std::vector<ReportPlot>& plots,
+                              const Provenance& p = {});
+
+// The provenance (io/provenance.hpp) as a Markdown section "## Traceability" with one bullet per
+// line, ending in an empty line.
+std::string provenance_markdown(const Provenance& p);
 
 // report.json, report.md, report.html and the plots written into dir (which exists; no
 // transaction, the caller holds one); returns the file names relative to dir in that order.

@@ -6,18 +6,47 @@
 
 #include <fmt/format.h>
 
+#include "io/estimate_text.hpp"
 #include "io/report_parts.hpp"
 #include "io/svg_plot.hpp"
 
 namespace frictionid {
 
 std::string num(double x) {
-  if (std::isnan(x)) return "—";
-  if (std::isinf(x)) return x > 0 ? "+inf" : "-inf";
-  return fmt::format("{:.6g}", x);
+  return plain_number(x);
 }
 std::string num(const std::optional<double>& x) {
   return x ? num(*x) : "—";
+}
+
+std::vector<std::string> result_items(const FitResult& r) {
+  std::vector<std::string> items;
+  for (const auto& p : r.parameters) {
+    const bool has_error = !p.fixed && !p.at_bound && p.std_error;
+    const EstimateText e = estimate_text(p.value, has_error ? p.std_error : std::nullopt);
+    std::string item = p.name + " = " + e.joined();
+    if (p.fixed)
+      item += " (fixed)";
+    else if (p.at_bound)
+      item += " (at a bound)";
+    else if (!p.std_error)
+      item += " (not determined)";
+    else if (!e.relative.empty())
+      item += " (" + e.relative + ")";
+    items.push_back(item);
+  }
+  return items;
+}
+
+std::string provenance_markdown(const Provenance& p) {
+  std::string md = "## Traceability\n\n";
+  for (const auto& [label, text] : provenance_lines(p)) {
+    std::string one_line = text;
+    for (char& ch : one_line)
+      if (ch == '\n' || ch == '\r') ch = ' ';
+    md += "- " + label + ": " + one_line + "\n";
+  }
+  return md + "\n";
 }
 
 std::string join_channels(const std::vector<Channel>& cs) {

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include <frictionid/parameters.hpp>
+#include "io/estimate_text.hpp"
 #include "io/html_page.hpp"
 #include "io/report_parts.hpp"
 #include "io/summary_columns.hpp"
@@ -112,10 +113,13 @@ std::optional<double> covariate_number(const Covariate& c) {
   return text_number(std::get<std::string>(c.value));
 }
 
-// A number cell with extra attributes (e.g. data-param) and the exact value in data-value.
-std::string number_td(const std::string& attributes, const std::optional<double>& x) {
+// A number cell with extra attributes (e.g. data-param) and the exact value in data-value,
+// showing `shown` (num(x) by default).
+std::string number_td(const std::string& attributes, const std::optional<double>& x,
+                      const std::optional<std::string>& shown = std::nullopt) {
   if (!x || !std::isfinite(*x)) return "<td class=\"num\"" + attributes + ">—</td>";
-  return fmt::format("<td class=\"num\"{} data-value=\"{}\">{}</td>", attributes, *x, num(*x));
+  return fmt::format("<td class=\"num\"{} data-value=\"{}\">{}</td>", attributes, *x,
+                     shown ? escape(*shown) : num(*x));
 }
 
 std::string covariate_td(const Covariate* c) {
@@ -168,9 +172,13 @@ void runs_section(std::string& h, const std::vector<SummaryRow>& rows,
     tr += number_td("", static_cast<double>(row.rows));
     for (const auto& name : params) {
       const SummaryParameter* p = find_parameter(row, name);
+      // The value to the decimal place of its stderr's second digit (io/estimate_text.hpp).
+      const EstimateText e =
+          p ? estimate_text(p->value, p->std_error) : EstimateText{kNoNumber, "", "", ""};
       tr += number_td(" data-param=\"" + escape(name) + "\"",
-                      p ? std::optional<double>(p->value) : std::nullopt);
-      tr += number_td(" data-stderr-of=\"" + escape(name) + "\"", p ? p->std_error : std::nullopt);
+                      p ? std::optional<double>(p->value) : std::nullopt, e.value_alone());
+      tr += number_td(" data-stderr-of=\"" + escape(name) + "\"", p ? p->std_error : std::nullopt,
+                      e.error_alone());
     }
     tr += number_td("", row.reduced_chi2);
     if (row.ok)
@@ -474,14 +482,14 @@ std::string summary_html(const std::vector<SummaryRow>& rows, const SummaryHtmlO
                       failed > 0 ? "<strong>" : "", failed > 0 ? "</strong>" : ""));
   if (rows.empty()) {
     line(h, "<p>No runs.</p>");
-    return h + html::page_end();
+    return h + html::provenance_section(o.provenance) + html::page_end();
   }
   line(h, "<nav><a href=\"#runs-heading\">Runs</a><a href=\"#trends\">Trends</a></nav>");
   problems_section(h, rows);
   runs_section(h, rows, o);
   line(h, std::string("<script>") + kSortScript + "</script>");
   trends_section(h, rows, o.trend_x);
-  return h + html::page_end();
+  return h + html::provenance_section(o.provenance) + html::page_end();
 }
 
 }  // namespace frictionid

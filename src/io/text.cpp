@@ -51,6 +51,29 @@ std::string escaped(std::string_view s) {
   return out;
 }
 
+std::string command_line(const std::vector<std::string>& words) {
+  static constexpr std::string_view kPlain =
+      "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_@%+=:,./-";
+  std::string out;
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    const std::string& w = words[i];
+    if (i > 0) out += ' ';
+    if (!w.empty() && w.find_first_not_of(kPlain) == std::string::npos) {
+      out += w;
+      continue;
+    }
+    out += '\'';
+    for (char ch : w) {
+      if (ch == '\'')
+        out += "'\\''";
+      else
+        out += ch;
+    }
+    out += '\'';
+  }
+  return escaped(out);
+}
+
 std::string for_terminal(std::string_view message, std::size_t max_bytes) {
   std::size_t total = 0;
   for (const char c : message) total += escaped_size(static_cast<unsigned char>(c));

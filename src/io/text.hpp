@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace frictionid::text {
 
@@ -36,6 +37,12 @@ std::string shown(std::string_view text, std::size_t max_bytes = 60);
 // otherwise reach the user's terminal, which acts on them (retitles, clears, reorders text).
 // The result is printable ASCII and tab only, so escaping it again changes nothing.
 std::string escaped(std::string_view s);
+
+// The command as a shell would take it back: the words joined by spaces, each word that holds
+// anything but letters, digits and _@%+=:,./- in single quotes (a quote inside as '\''), an
+// empty word as '', and then escaped(), so that a control character or a non-ASCII byte shows as
+// \xNN. For the provenance of reports (io/provenance.hpp).
+std::string command_line(const std::vector<std::string>& words);
 
 // A message as it may be shown on a terminal or in an exception's text: escaped(), on one line,
 // and when that is longer than max_bytes, its start and its end with the middle left out and

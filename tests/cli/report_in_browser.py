@@ -6,7 +6,8 @@ Chromium and checks what they render.
 
 Checks, for each page:
   - the DOM holds every parameter value of report.json (compare.json: of every model) exactly
-    (the value cell's data-value) and shows it rounded to 6 significant digits;
+    (the value cell's data-value) and shows it rounded: to the decimal place of its stderr's
+    second digit (within 0.05 stderr), or to 6 significant digits without a stderr;
   - every plot file of the report is a figure in the page, and every figure's SVG has a nonzero
     rendered size: the page's own script writes getBoundingClientRect() into the figure's
     data-rendered-size attribute on load, and --dump-dom shows the DOM after load;
@@ -131,13 +132,23 @@ def png_grey_levels(path, columns):
     return levels
 
 
-def value_failures(label, cell, expected):
+def shown_number(text):
+    """The number a cell shows: "0.8500", or "1.234\u00a0\u00d7\u00a010\u207b\u2078"."""
+    superscripts = str.maketrans("\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079\u207b",
+                                 "0123456789-")
+    mantissa, _, power = text.replace("\u00a0", "").partition("\u00d710")
+    return float(mantissa) * (10.0 ** int(power.translate(superscripts)) if power else 1.0)
+
+
+def value_failures(label, cell, expected, stderr=None):
     if cell is None:
         return ["%s is not in the DOM" % label]
     exact, shown = cell
     if exact is None or float(exact) != expected:
         return ["%s: DOM holds %s, the JSON report %r" % (label, exact, expected)]
-    if abs(float(shown) - expected) > 1e-5 * abs(expected):
+    # Rounded to the place of the stderr's second digit: off by at most half a unit there.
+    tolerance = max(1e-5 * abs(expected), 0.05 * stderr if stderr else 0.0)
+    if abs(shown_number(shown) - expected) > tolerance:
         return ["%s: shown as %s, the JSON report %r" % (label, shown, expected)]
     return []
 
@@ -220,7 +231,7 @@ def main():
             report_json = json.load(fj)
         for name, entry in report_json["parameters"].items():
             failures += value_failures("report.html: parameter " + name,
-                                       parsed.params.get(name), entry["value"])
+                                       parsed.params.get(name), entry["value"], entry["stderr"])
         if not any(f == "collapse_T_x.svg" for f, _ in parsed.figures):
             failures.append("report.html: no collapse plot of T_x")
 
@@ -236,7 +247,8 @@ def main():
             for name, entry in model["parameters"].items():
                 failures += value_failures(
                     "compare.html: %s parameter %s" % (model["model"], name),
-                    parsed.model_params.get((model["model"], name)), entry["value"])
+                    parsed.model_params.get((model["model"], name)), entry["value"],
+                    None if entry["fixed"] else entry["stderr"])
     for f in failures:
         print("FAILED: " + f)
     return 1 if failures else 0

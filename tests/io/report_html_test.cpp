@@ -99,6 +99,30 @@ TEST(ReportHtml, HoldsEveryParameterValueExactly) {
   }
 }
 
+TEST(ReportHtml, ValuesAreShownToTheDigitsTheirStderrSupports) {
+  const Dataset d = make_dataset();
+  const std::string html = report_html(make_result(d), d);
+  // f = 0.49987654321 ± 0.00123: the stderr to 2 digits, the value to the same place, the
+  // interval to 2 digits of its width; every cell keeps the exact value in data-value.
+  EXPECT_NE(html.find("<td class=\"num\" data-value=\"0.49987654321\">0.4999</td>"
+                      "<td class=\"num\" data-value=\"0.00123\">0.0012</td>"
+                      "<td class=\"num\" data-value=\"0.4974\">0.4974</td>"
+                      "<td class=\"num\" data-value=\"0.5023\">0.5023</td>"),
+            std::string::npos)
+      << html;
+}
+
+TEST(ReportHtml, ResultLineComesBeforeTheDetails) {
+  const Dataset d = make_dataset();
+  const std::string html = report_html(make_result(d), d);
+  const auto result = html.find(
+      "<p class=\"result\" id=\"result\"><strong>Result:</strong> <span class=\"estimate\">f = "
+      "0.4999 ± 0.0012 (0.25 %)</span>; <span class=\"estimate\">kappa = 1 (fixed)</span>.</p>");
+  ASSERT_NE(result, std::string::npos) << html;
+  EXPECT_LT(result, html.find("id=\"warnings\""));
+  EXPECT_LT(result, html.find("id=\"parameters\""));
+}
+
 TEST(ReportHtml, WarningsComeFirstAndAreEscaped) {
   const Dataset d = make_dataset();
   const std::string html = report_html(make_result(d), d);

@@ -345,16 +345,27 @@ TEST(ReportJson, NonFiniteNumbersBecomeNullAndNoNanTextAnywhere) {
   EXPECT_FALSE(mentions_nan(slurp(dir.path() / "report.md")));
 }
 
+TEST(ReportMarkdown, ResultLineComesFirstWithEveryParameter) {
+  const Dataset d = make_dataset();
+  const std::string md = report_markdown(make_result(d));
+  const auto result = md.find(
+      "**Result:** kappa = 1.250 ± 0.062 (5.0 %); f = 0.3125 ± 0.0039 (1.2 %); h = 0 (fixed); "
+      "a = 4 (at a bound); m = 7.5 (not determined).\n");
+  ASSERT_NE(result, std::string::npos) << md;
+  EXPECT_LT(result, md.find("## Parameters"));
+}
+
 TEST(ReportMarkdown, HasTitleTableNotesWarningsCorrelationAndLinks) {
   const Dataset d = make_dataset();
   FitResult r = make_result(d);
   const std::string md = report_markdown(r);
 
   EXPECT_NE(md.find("# frictionid fit: model corrected, pressure hertz"), std::string::npos);
-  EXPECT_NE(md.find("| kappa | 1.25 ± 0.0625 | [1.125, 1.375] | — | 1 | [0.1, 10] |"),
+  // The stderr to 2 digits, the value to the same place, the interval to 2 digits of its width.
+  EXPECT_NE(md.find("| kappa | 1.250 ± 0.062 | [1.12, 1.38] | — | 1 | [0.1, 10] |"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("| f | 0.3125 ± 0.00390625 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| f | 0.3125 ± 0.0039 | [0.305, 0.320] |"), std::string::npos) << md;
   EXPECT_NE(md.find("[0, +inf]"), std::string::npos) << md;
   EXPECT_NE(md.find("| fixed |"), std::string::npos);
   EXPECT_NE(md.find("| at bound (stderr not meaningful) |"), std::string::npos);
@@ -370,7 +381,7 @@ TEST(ReportMarkdown, HasTitleTableNotesWarningsCorrelationAndLinks) {
   r.parameters[0].ci95_bootstrap = std::array<double, 2>{1.1, 1.4};
   r.parameters[0].std_error_bootstrap = 0.07;
   const std::string md2 = report_markdown(r);
-  EXPECT_NE(md2.find("| kappa | 1.25 ± 0.0625 | [1, 1.5] | 0.125 | 0.07 | [1.1, 1.4] | 1 |"),
+  EXPECT_NE(md2.find("| kappa | 1.250 ± 0.062 | [1.00, 1.50] | 0.12 | 0.070 | [1.10, 1.40] | 1 |"),
             std::string::npos)
       << md2;
   EXPECT_NE(md2.find("HC3 sandwich"), std::string::npos);
@@ -418,7 +429,8 @@ TEST(WriteReport, WritesOnlyReportFilesIntoAFreshNestedDir) {
 
   // Both report files are there, and report.json parses back to what report_json gives.
   const std::string json = slurp(dir / "report.json");
-  EXPECT_EQ(ojson::parse(json), report_json(r));
+  // (write_report adds the provenance of its options: here the defaults.)
+  EXPECT_EQ(ojson::parse(json), report_json(r, Provenance{}));
   EXPECT_EQ(json.back(), '\n');
   EXPECT_EQ(slurp(dir / "report.md").find("# frictionid fit"), 0u);
 

@@ -9,6 +9,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace frictionid::text {
 namespace {
@@ -123,6 +124,14 @@ TEST(InvisibleCharacters, CountAsOneEditForDidYouMean) {
   EXPECT_EQ(misspelling_distance("\xE2\x80\x8Bv_x", "v_x"), 1u);
   EXPECT_EQ(misspelling_distance("\xEF\xBB\xBFomega", "omega"), 1u);
   EXPECT_EQ(without_invisible("\xC2\xA0N\xE2\x80\x8D"), "N");
+}
+
+TEST(CommandLine, QuotesOnlyWordsAShellWouldSplitAndEscapesControlBytes) {
+  EXPECT_EQ(command_line({"frictionid", "fit", "data/run 1.csv", "--fix", "kappa=1.2", ""}),
+            "frictionid fit 'data/run 1.csv' --fix kappa=1.2 ''");
+  EXPECT_EQ(command_line({"it's", "a$b", "x*"}), "'it'\\''s' 'a$b' 'x*'");
+  // A control character or a non-ASCII byte cannot reach a page or a terminal as such.
+  EXPECT_EQ(command_line({"a\x1b[2Jb", "é"}), "'a\\x1b[2Jb' '\\xc3\\xa9'");
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <frictionid/io/provenance.hpp>
 #include <frictionid/io/summary_table.hpp>
 
 namespace frictionid {
@@ -26,6 +27,7 @@ struct SummaryHtmlOptions {
   // no link with None, for a failed run, or for a label without an entry here.
   RunReports run_reports = RunReports::None;
   std::map<std::string, std::string> run_directories;  // label -> directory under runs/
+  Provenance provenance;  // the batch's command and input files, at the end of the page
 };
 
 // The page. Missing numbers show as "—", never NaN; numbers keep their exact value in

@@ -1,0 +1,26 @@
+// The provenance of a report, from a request (app/report_provenance.hpp).
+#include "app/report_provenance.hpp"
+
+#include <exception>
+
+#include "app/request_json.hpp"
+
+namespace frictionid::app {
+
+Provenance report_provenance(const FitRequest& r, const std::vector<std::string>& inputs) {
+  Provenance p;
+  p.command_line = r.command_line;
+  p.options = fit_request_json(r);
+  for (const auto& path : inputs) {
+    try {
+      p.inputs.push_back(input_file(path));
+    } catch (const std::exception&) {
+      // A FIFO or a process substitution was read once and has no bytes left to hash; the
+      // report still names it (sha256 empty: not fingerprinted).
+      p.inputs.push_back(InputFile{path, 0, ""});
+    }
+  }
+  return p;
+}
+
+}  // namespace frictionid::app
