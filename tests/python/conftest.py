@@ -99,3 +99,32 @@ def second_long_fit():
                                rows=600, noise=0.01, seed=2)
     return lambda: frictionid.fit(rows, model="exact", pressure="power:1", threads=1, starts=2,
                                   global_evaluations=1000)
+
+
+def without_traceability(data: bytes) -> bytes:
+    """A report file's bytes without what names the run that wrote it (the "Traceability"
+    section of a page, the "provenance" key of a JSON report), as tests/support/
+    without_traceability.hpp: the command line and the Python driver are asked differently,
+    and must agree on everything else byte for byte."""
+    text = data.decode("utf-8", errors="surrogateescape")
+    html = text.find('<h2 id="traceability">')
+    if html >= 0:
+        end = text.find("</dl>\n", html)
+        if end >= 0:
+            text = text[:html] + text[end + 6:]
+        return text.encode("utf-8", errors="surrogateescape")
+    md = text.find("## Traceability\n")
+    if md >= 0:
+        end = text.find("\n\n", md + 16)
+        if end >= 0:
+            text = text[:md] + text[end + 2:]
+        return text.encode("utf-8", errors="surrogateescape")
+    if text.startswith("{"):
+        try:
+            j = json.loads(text, object_pairs_hook=dict)
+        except ValueError:
+            return data
+        if isinstance(j, dict):
+            j.pop("provenance", None)
+        return j
+    return data
