@@ -106,9 +106,8 @@ TEST(BatchInputs, AnUnreadableDirectoryIsExitTwoNamingItAndPermissionDenied) {
   fs::permissions(d.path(), fs::perms::all);
   fs::permissions(d / "out", fs::perms::all);
   fs::permissions(d / "in", fs::perms::none);
-  const auto r = frictionid::test::run_command(as_user + std::getenv("FRICTIONID_EXE") +
-                                               " batch " + d / "in" + " --report " + d / "out" +
-                                               " 2>&1");
+  const auto r = frictionid::test::run_command(as_user + std::getenv("FRICTIONID_EXE") + " batch " +
+                                               d / "in" + " --report " + d / "out" + " 2>&1");
   fs::permissions(d / "in", fs::perms::owner_all);
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find(d / "in"), std::string::npos) << r.out;

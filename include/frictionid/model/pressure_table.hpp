@@ -95,7 +95,7 @@ class PressureTable {
     return edge * interpolate(rho);
   }
 
- // The law's moments m_0..m_5 (pressure_law.hpp), computed once by `compute` and kept: they
+  // The law's moments m_0..m_5 (pressure_law.hpp), computed once by `compute` and kept: they
   // depend only on the samples, and a fit asks for them at every evaluation of every start,
   // which cost a pass over every sample each time (a 5000-sample table took minutes to fit).
   template <typename Compute>
