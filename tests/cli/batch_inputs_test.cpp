@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "support/memory_cap.hpp"
 #include "support/run_command.hpp"
 #include "support/scratch_dir.hpp"
 
@@ -151,6 +152,22 @@ TEST(BatchInputs, ARerunRemovesTheTemporaryFilesAKilledBatchLeft) {
   EXPECT_FALSE(fs::exists(d / "out/runs/run1/.report.json.tmp.Ab12Cd"));
   EXPECT_FALSE(fs::exists(d / "out/.summary.csv.tmp.Zz9yX8"));
   EXPECT_TRUE(fs::exists(d / "out/runs/run1/keep.tmp.txt"));
+}
+
+// A sparse file of over a gigabyte among a batch's inputs: planning hashes it as a stream and its
+// run fails with the single fit's message, under a memory cap the file would not fit in (the
+// previous build read each input whole to hash it and ended in std::bad_alloc).
+TEST(BadInputLarge, ASparseGigabyteInputFailsItsRunWithTheReadersMessageInBoundedMemory) {
+  const ScratchDir d("batch_inputs_sparse");
+  make_run(d / "in/good.csv", 1);
+  { std::ofstream(d / "in/sparse.csv") << "v_x,omega,N,R,T_x\n"; }
+  fs::resize_file(d / "in/sparse.csv", std::uintmax_t{1200} << 20);  // a hole: no disk used
+  const auto r = frictionid::test::run_command(frictionid::test::memory_cap_prefix(1000) +
+                                               std::getenv("FRICTIONID_EXE") + " batch " +
+                                               d / "in" + " --report " + d / "out" + " 2>&1");
+  EXPECT_EQ(r.code, 4) << r.out;
+  EXPECT_NE(r.out.find("line is longer than 2^24-1 characters"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2 runs: 2 fitted"), std::string::npos) << r.out;
 }
 
 }  // namespace
