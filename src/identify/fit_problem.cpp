@@ -27,7 +27,8 @@ bool constant_channel(const Dataset& data, Channel c) {
 
 // The channels to fit: the requested ones that some row measures, in canonical order.
 std::vector<Channel> fitted_channels(const Dataset& data, const FitSettings& s,
-                                     std::vector<std::string>& warnings) {
+                                     std::vector<std::string>& warnings,
+                                     std::vector<Channel>& constant) {
   std::vector<Channel> requested = s.channels;
   if (requested.empty())
     for (Channel c : kAllChannels)
@@ -39,6 +40,7 @@ std::vector<Channel> fitted_channels(const Dataset& data, const FitSettings& s,
       warnings.push_back(std::string("channel ") + channel_name(c) +
                          " was requested but no row measures it; it is not fitted");
     } else if (noise_estimated(s, data, c) && constant_channel(data, c)) {
+      constant.push_back(c);
       warnings.push_back(std::string("every measured value of ") + channel_name(c) +
                          " is the same: the channel says nothing about its noise, so it is not "
                          "fitted and does not count in the degrees of freedom");
@@ -89,7 +91,17 @@ ChannelSummary channel_summary(const Dataset& data, Channel c, std::vector<doubl
 }  // namespace
 
 LocalProblem make_fit_problem(const Dataset& data, const FitSettings& s, FitResult& res) {
-  res.channels = fitted_channels(data, s, res.warnings);
+  std::vector<Channel> constant;
+  res.channels = fitted_channels(data, s, res.warnings, constant);
+  if (res.channels.empty() && !constant.empty()) {
+    std::string names;
+    for (Channel c : constant) names += (names.empty() ? "" : ", ") + std::string(channel_name(c));
+    throw std::invalid_argument(
+        "every measured value of " + names +
+        " is the same in every row: a constant channel says nothing about its noise, so with an "
+        "estimated noise model there is nothing to fit; give sigma columns (--noise-model "
+        "columns) or measurements that vary");
+  }
   if (res.channels.empty())
     throw std::invalid_argument("no requested channel is measured by any row");
   if (s.noise_model == NoiseModelKind::Columns)

@@ -38,4 +38,15 @@ TEST(UndefinedStatistics, AFitWithNoDegreeOfFreedomHasANullReducedChi2AndSaysWhy
   for (const auto& [name, p] : j["parameters"].items()) EXPECT_TRUE(p["stderr"].is_null()) << name;
 }
 
+TEST(UndefinedStatistics, ConstantChannelsNameTheRealCauseNotAMissingChannel) {
+  const ScratchDir d("constant_channels");
+  std::ofstream(d / "const.csv") << "v_x,omega,N,R,T_x\n0.1,1,100,0.05,5\n0.2,1,100,0.05,5\n"
+                                    "0.3,1,100,0.05,5\n0.4,1,100,0.05,5\n";
+  const auto r =
+      frictionid::test::run_frictionid("fit " + d / "const.csv" + " --report " + d / "out");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("every measured value of T_x is the same"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("no requested channel is measured"), std::string::npos) << r.out;
+}
+
 }  // namespace
