@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -44,13 +45,15 @@ inline constexpr std::size_t kRingTableMinRows = 4000;
 
 // A table of law's ring integrals at exponent n (power law; ignored otherwise) for the exact
 // variant, with n-slopes if asked; nullptr for the other variants and the ring law (its
-// integrals are closed-form kernel values, as cheap as a table).
+// integrals are closed-form kernel values, as cheap as a table). `stop`, when given, may end the
+// build early (model::RingTableBuildStopped).
 inline std::shared_ptr<const model::RingIntegralTable> ring_table_for(
-    ModelKind kind, const model::PressureLaw<double>& law, double n, bool n_slope) {
+    ModelKind kind, const model::PressureLaw<double>& law, double n, bool n_slope,
+    std::function<bool()> stop = {}) {
   if (kind != ModelKind::Exact || law.kind == model::PressureKind::Ring) return nullptr;
   model::PressureLaw<double> at = law;
   if (at.kind == model::PressureKind::Power) at.n = n;
-  return std::make_shared<const model::RingIntegralTable>(at, n_slope);
+  return std::make_shared<const model::RingIntegralTable>(at, n_slope, std::move(stop));
 }
 
 // The same for one pass over `rows` rows: nullptr where the radial quadrature is cheaper.

@@ -55,8 +55,16 @@ FittedRun fit_keeping_problem(const FitSettings& settings, const Dataset& data,
   LocalProblem lp = make_fit_problem(data, s, res);
   const ParamVector initial = initial_parameters(s);
   // The exact model with a fixed pressure law: tabulate its ring integrals once for every pass.
-  if (s.model == ModelKind::Exact && !exponent_free(lp))
-    lp.exact_table = ring_table_for(s.model, s.law, initial[kN], false);
+  // A table law of many samples takes seconds: the build asks the observer, so that Ctrl-C acts.
+  if (s.model == ModelKind::Exact && !exponent_free(lp)) {
+    try {
+      lp.exact_table = ring_table_for(s.model, s.law, initial[kN], false, [observer] {
+        return observer != nullptr && observer->cancelled();
+      });
+    } catch (const model::RingTableBuildStopped&) {
+      throw FitError("interrupted");
+    }
+  }
 
   res.noise_model = noise_model_name(s.noise_model);
   const SearchOutcome search = search_optimum(lp, initial, res, observer);

@@ -88,6 +88,12 @@ model::PressureLaw<double> load_pressure_table(const std::string& path) {
     if (!parse_field(line.substr(comma + 1), s))
       throw InputError(path, lineno, 2,
                        "sigma0: expected a finite number, found " + shown(line.substr(comma + 1)));
+    if (rho.size() == kMaxPressureTableSamples)
+      throw InputError(path, lineno, 0,
+                       "more than " + std::to_string(kMaxPressureTableSamples) +
+                           " samples: the exact model's set-up integrates over every sample "
+                           "(about half a millisecond each); resample the table, a few thousand "
+                           "samples resolve any measured profile");
     rho.push_back(r);
     sigma.push_back(s);
     lines.push_back(lineno);

@@ -99,3 +99,36 @@ TEST(PressureLawReader, AThirdRowWithTheSameRhoIsRejectedAtItsLine) {
 
 }  // namespace
 }  // namespace frictionid
+
+namespace frictionid {
+namespace {
+
+// A table past the sample limit is refused at once, at the first sample too many: its exact
+// model's set-up would take minutes and (before) ignored Ctrl-C while it ran.
+TEST(PressureLawReader, ATableOfMoreSamplesThanTheLimitIsRefusedAtTheFirstOneTooMany) {
+  std::string text = "rho,sigma0\n";
+  const std::size_t n = kMaxPressureTableSamples + 5;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double rho = static_cast<double>(i) / static_cast<double>(n - 1);
+    text += std::to_string(rho) + "," + std::to_string(1.0 - rho * rho) + "\n";
+  }
+  const TableFile file(text);
+  try {
+    load_pressure_table(file.path);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), kMaxPressureTableSamples + 2);  // the header, then the samples
+    EXPECT_NE(std::string(e.what()).find("more than 20000 samples"), std::string::npos) << e.what();
+  }
+  // At the limit the table is read.
+  std::string at_limit = "rho,sigma0\n";
+  for (std::size_t i = 0; i < kMaxPressureTableSamples; ++i) {
+    const double rho = static_cast<double>(i) / static_cast<double>(kMaxPressureTableSamples - 1);
+    at_limit += std::to_string(rho) + "," + std::to_string(1.0 - rho * rho) + "\n";
+  }
+  const TableFile limit(at_limit);
+  EXPECT_NO_THROW(load_pressure_table(limit.path));
+}
+
+}  // namespace
+}  // namespace frictionid

@@ -2,11 +2,17 @@
 // a pressure law.
 #pragma once
 
+#include <cstddef>
+
 #include <string>
 
 #include <frictionid/model/pressure_law.hpp>
 
 namespace frictionid {
+
+// The most samples a pressure table may have: the exact model's set-up (its ring-integral table)
+// grows with every sample, and past this it takes longer than the fit itself.
+inline constexpr std::size_t kMaxPressureTableSamples = 20000;
 
 // Throws InputError naming the argument (or the table file, line and column) on bad input.
 model::PressureLaw<double> parse_pressure_law(const std::string& spec);

@@ -23,6 +23,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
+#include <stdexcept>
 #include <vector>
 
 #include <frictionid/model/pressure_law.hpp>
@@ -55,6 +57,12 @@ inline std::array<double, 6> ring_integral_normalisers(double eps) {
   return {slide, w, w3, slide * w * w, slide, slide};
 }
 
+// Thrown by a table build that its `stop` check asked to stop (a cancelled fit).
+class RingTableBuildStopped : public std::runtime_error {
+ public:
+  RingTableBuildStopped() : std::runtime_error("the ring-integral table's build was stopped") {}
+};
+
 class RingIntegralTable {
  public:
   static constexpr int kDegree = 16;
@@ -62,9 +70,14 @@ class RingIntegralTable {
   static constexpr double kMaxLogEps = 18.420680743952367;   // ln(1e8)
 
   // Tabulates the law's integrals (and, for a power law with with_n_slope, their derivatives
-  // with respect to the exponent n).
-  explicit RingIntegralTable(const PressureLaw<double>& law, bool with_n_slope = false)
-      : law_(law), slopes_(with_n_slope && law.kind == PressureKind::Power) {
+  // with respect to the exponent n). The build asks `stop` between nodes and throws
+  // RingTableBuildStopped when it says so: a table of many samples takes seconds, and Ctrl-C must
+  // not wait for it.
+  explicit RingIntegralTable(const PressureLaw<double>& law, bool with_n_slope = false,
+                             std::function<bool()> stop = {})
+      : law_(law),
+        slopes_(with_n_slope && law.kind == PressureKind::Power),
+        stop_(std::move(stop)) {
     std::vector<double> breaks = {kMinLogEps, -16.0, -8.0, -4.0, -2.0, -1.0,
                                   0.0,        1.0,   2.0,  4.0,  8.0,  kMaxLogEps};
     graded_towards(0.0, breaks);
@@ -159,6 +172,7 @@ class RingIntegralTable {
     constexpr int d = kDegree;
     std::array<std::array<double, kChannels>, d + 1> f;
     for (int i = 0; i <= d; ++i) {
+      if (stop_ && stop_()) throw RingTableBuildStopped();
       // Chebyshev extreme points, ordered from u1 down to u0.
       const double x = std::cos(M_PI * i / d);
       f[static_cast<std::size_t>(i)] = node_values(std::exp(0.5 * (u0 + u1) + 0.5 * (u1 - u0) * x));
@@ -199,6 +213,7 @@ class RingIntegralTable {
 
   PressureLaw<double> law_;
   bool slopes_;
+  std::function<bool()> stop_;  // asked between nodes of the build; empty: never stops
   std::vector<double> starts_;  // u0 of every piece, increasing
   std::vector<Piece> pieces_;
 };
