@@ -104,13 +104,9 @@ std::string not_an_input(const std::string& path) {
            : errno == EACCES ? "permission denied"
            : errno == ENOENT ? "no such file or directory"
                              : std::strerror(errno);
-  if (S_ISREG(sb.st_mode)) return "";
-  return S_ISFIFO(sb.st_mode)   ? "not a regular file (a FIFO)"
-         : S_ISCHR(sb.st_mode)  ? "not a regular file (a character device)"
-         : S_ISBLK(sb.st_mode)  ? "not a regular file (a block device)"
-         : S_ISSOCK(sb.st_mode) ? "not a regular file (a socket)"
-         : S_ISDIR(sb.st_mode)  ? "a directory"
-                                : "not a regular file";
+  const std::string kind = non_regular_kind(sb.st_mode);
+  if (kind.empty() || kind == "a directory") return kind;
+  return kind == "something else" ? "not a regular file" : "not a regular file (" + kind + ")";
 }
 
 std::string listing_error(const std::error_code& ec) {

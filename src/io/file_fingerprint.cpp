@@ -20,14 +20,10 @@ std::string reason(int err) {
 }
 
 FileFingerprint from_stat(const std::string& path, const struct stat& sb) {
-  if (!S_ISREG(sb.st_mode))
-    throw InputError(path, 0, 0,
-                     S_ISFIFO(sb.st_mode)   ? "not a regular file (a FIFO)"
-                     : S_ISCHR(sb.st_mode)  ? "not a regular file (a character device)"
-                     : S_ISBLK(sb.st_mode)  ? "not a regular file (a block device)"
-                     : S_ISSOCK(sb.st_mode) ? "not a regular file (a socket)"
-                     : S_ISDIR(sb.st_mode)  ? "not a regular file (a directory)"
-                                            : "not a regular file");
+  if (const std::string kind = non_regular_kind(sb.st_mode); !kind.empty())
+    throw InputError(
+        path, 0, 0,
+        kind == "something else" ? "not a regular file" : "not a regular file (" + kind + ")");
   FileFingerprint f;
   f.size = static_cast<std::uint64_t>(sb.st_size);
   f.mtime_ns = static_cast<std::int64_t>(sb.st_mtim.tv_sec) * 1'000'000'000 + sb.st_mtim.tv_nsec;
@@ -35,6 +31,16 @@ FileFingerprint from_stat(const std::string& path, const struct stat& sb) {
 }
 
 }  // namespace
+
+std::string non_regular_kind(unsigned mode) {
+  if (S_ISREG(mode)) return "";
+  return S_ISFIFO(mode)   ? "a FIFO"
+         : S_ISCHR(mode)  ? "a character device"
+         : S_ISBLK(mode)  ? "a block device"
+         : S_ISSOCK(mode) ? "a socket"
+         : S_ISDIR(mode)  ? "a directory"
+                          : "something else";
+}
 
 FileFingerprint stat_file(const std::string& path) {
   struct stat sb;

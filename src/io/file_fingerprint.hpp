@@ -16,6 +16,10 @@ struct FileFingerprint {
   bool same_bytes(const FileFingerprint& o) const { return size == o.size && sha256 == o.sha256; }
 };
 
+// What a file of stat mode `mode` is when it is not a regular file ("a FIFO", "a character
+// device", "a block device", "a socket", "a directory", "something else"); "" for a regular file.
+std::string non_regular_kind(unsigned mode);
+
 // Throws InputError naming the path: it cannot be opened or read ("permission denied", ...), or
 // it is not a regular file (a FIFO or a device has no fixed bytes to fingerprint).
 FileFingerprint fingerprint_file(const std::string& path);

@@ -89,6 +89,7 @@ class RingIntegralTable {
         std::unique(breaks.begin(), breaks.end(), [](double x, double y) { return y - x < 1e-15; }),
         breaks.end());
     for (std::size_t i = 0; i + 1 < breaks.size(); ++i) build(breaks[i], breaks[i + 1], 0);
+    stop_ = nullptr;  // only the build asks it; what it captured may not outlive the caller
   }
 
   const PressureLaw<double>& law() const { return law_; }
