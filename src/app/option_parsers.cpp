@@ -11,6 +11,7 @@
 
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/pressure_law_reader.hpp>
+#include <frictionid/io/pressure_map_reader.hpp>
 #include "io/text.hpp"
 
 namespace frictionid {
@@ -197,6 +198,46 @@ model::PressureLaw<double> parse_pressure_option(const std::string& spec) {
     if (!e.file().empty()) throw;
     throw InputError("--pressure", 0, 0, e.what());
   }
+}
+
+model::ContactSpot parse_contact_option(const std::string& spec) {
+  static const std::string option = "--contact";
+  static const char* const kExpected =
+      "expected circle, ellipse:Q, rect:Q (0 < Q <= 4) or map:FILE";
+  if (spec == "circle") return model::ContactSpot::circle();
+  for (const char* kind : {"ellipse:", "rect:"}) {
+    const std::string prefix = kind;
+    if (spec.rfind(prefix, 0) != 0) continue;
+    const std::string_view q_text = trim(std::string_view(spec).substr(prefix.size()));
+    double q = 0;
+    if (const char* why = text::parse_double_strict(q_text, q))
+      throw InputError(option, 0, 0,
+                       quoted(spec) + ": Q is " + quoted(q_text) + " (" + why + "); " + kExpected);
+    if (!(q > 0.0 && q <= 4.0))
+      throw InputError(option, 0, 0,
+                       quoted(spec) + ": Q = " + number_text(q) +
+                           " is out of range; expected 0 < Q <= 4 (the spot's extent along y over "
+                           "its extent R along x)");
+    return prefix == "rect:" ? model::ContactSpot::rect(q) : model::ContactSpot::ellipse(q);
+  }
+  if (spec.rfind("map:", 0) == 0) {
+    if (spec.size() == 4) throw InputError(option, 0, 0, "'map:': map:FILE needs a file name");
+    return model::ContactSpot::pressure_map(load_pressure_map(spec.substr(4)));
+  }
+  throw InputError(option, 0, 0, "unknown contact spot " + quoted(spec) + "; " + kExpected);
+}
+
+std::vector<std::string> parse_contact_list(const std::string& option, const std::string& spec) {
+  static const char* const kExpected = "SPOT[,SPOT...], e.g. circle,ellipse:0.7";
+  std::vector<std::string> result;
+  std::set<std::string> seen;
+  for (const std::string_view item : split_items(option, spec, kExpected)) {
+    const std::string spot(item);
+    parse_contact_option(spot);
+    check_unique(option, spec, seen, item);
+    result.push_back(spot);
+  }
+  return result;
 }
 
 namespace {

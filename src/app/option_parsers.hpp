@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <frictionid/io/dataset_csv.hpp>
+#include <frictionid/model/contact_spot.hpp>
 #include <frictionid/model/pressure_law.hpp>
 
 namespace frictionid {
@@ -30,6 +31,15 @@ ColumnMap parse_column_map(const std::string& spec);
 // The LAW of --pressure (io's parse_pressure_law), its messages prefixed with the option; a
 // table file's errors keep naming the file, line and column.
 model::PressureLaw<double> parse_pressure_option(const std::string& spec);
+
+// The SPOT of --contact: circle, ellipse:Q or rect:Q (0 < Q <= 4: the semi-axis or half-width
+// along y over R) or map:FILE (io's load_pressure_map), its messages prefixed with the option; a
+// map file's errors keep naming the file, line and column.
+model::ContactSpot parse_contact_option(const std::string& spec);
+
+// "circle,ellipse:0.7" -> {"circle", "ellipse:0.7"}, each checked by parse_contact_option
+// (compare's list of spots; a map's file name cannot hold a comma there).
+std::vector<std::string> parse_contact_list(const std::string& option, const std::string& spec);
 
 // The checks of parse_column_map for a map built elsewhere (Python's dict); messages quote it as
 // canonical=header,... text.

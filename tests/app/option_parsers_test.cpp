@@ -316,3 +316,63 @@ TEST(WholeNumbers, TheRangeEndsAreIncluded) {
 
 }  // namespace
 }  // namespace frictionid
+
+namespace frictionid {
+namespace {
+
+// --- parse_contact_option (--contact SPOT) ---
+
+TEST(ParseContactOption, ReadsEachKindOfSpotWithItsAspect) {
+  EXPECT_EQ(parse_contact_option("circle").kind, model::SpotKind::Circle);
+  const auto ellipse = parse_contact_option("ellipse:0.6");
+  EXPECT_EQ(ellipse.kind, model::SpotKind::Ellipse);
+  EXPECT_EQ(ellipse.q, 0.6);
+  const auto rect = parse_contact_option("rect:4");
+  EXPECT_EQ(rect.kind, model::SpotKind::Rect);
+  EXPECT_EQ(rect.q, 4.0);
+}
+
+TEST(ParseContactOption, AnAspectOutsideZeroToFourOrNotANumberIsRejectedNamingTheOption) {
+  for (const char* spec : {"ellipse:0", "ellipse:-0.5", "rect:4.0000001", "rect:1e9"}) {
+    const InputError e = rejected([spec] { parse_contact_option(spec); });
+    EXPECT_EQ(e.file(), "--contact");
+    EXPECT_TRUE(Contains(e.what(), "expected 0 < Q <= 4")) << spec;
+  }
+  for (const char* spec : {"ellipse:", "ellipse:nan", "rect:inf", "rect:0.5x", "ellipse:one"}) {
+    const InputError e = rejected([spec] { parse_contact_option(spec); });
+    EXPECT_EQ(e.file(), "--contact");
+    EXPECT_TRUE(Contains(e.what(), "expected circle, ellipse:Q, rect:Q (0 < Q <= 4) or map:FILE"))
+        << spec;
+  }
+}
+
+TEST(ParseContactOption, AnUnknownSpotListsTheKinds) {
+  const InputError e = rejected([] { parse_contact_option("square:1"); });
+  EXPECT_TRUE(Contains(e.what(), "--contact: unknown contact spot 'square:1'"));
+  EXPECT_TRUE(Contains(e.what(), "map:FILE"));
+  EXPECT_TRUE(Contains(rejected([] { parse_contact_option("map:"); }).what(), "needs a file name"));
+}
+
+TEST(ParseContactOption, AMapFilesErrorsKeepNamingTheFileLineAndColumn) {
+  const std::string path = ::testing::TempDir() + "contact_option_bad_map.csv";
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  std::fputs("x,y,sigma0\n0,0,1\n1,0,1\n0,1,-2\n1,1,1\n", f);
+  std::fclose(f);
+  const InputError e = rejected([&] { parse_contact_option("map:" + path); });
+  std::remove(path.c_str());
+  EXPECT_EQ(e.file(), path);
+  EXPECT_EQ(e.line(), 4u);
+  EXPECT_EQ(e.column(), 3u);
+}
+
+TEST(ParseContactList, ReadsCompareSpotsInOrderAndRejectsRepeats) {
+  EXPECT_EQ(parse_contact_list("--contact", "circle, ellipse:0.7"),
+            (std::vector<std::string>{"circle", "ellipse:0.7"}));
+  EXPECT_TRUE(Contains(rejected([] { parse_contact_list("--contact", "circle,circle"); }).what(),
+                       "more than once"));
+  EXPECT_TRUE(Contains(rejected([] { parse_contact_list("--contact", "circle,rect:5"); }).what(),
+                       "expected 0 < Q <= 4"));
+}
+
+}  // namespace
+}  // namespace frictionid

@@ -1,6 +1,7 @@
 // libFuzzer target: the option-value parsers (--param, --fix, --bounds, --channels, --columns,
-// numbers, power:N) on the input as text, and the pressure-table reader (table:FILE) on the input
-// as a file. Rejections must be InputError; accepted values must satisfy the documented contract.
+// numbers, power:N, ellipse:Q) on the input as text, and the pressure-table reader (table:FILE)
+// and the pressure-map reader (map:FILE) on the input as a file. Rejections must be InputError;
+// accepted values must satisfy the documented contract.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/pressure_law_reader.hpp>
+#include <frictionid/io/pressure_map_reader.hpp>
 #include "app/option_parsers.hpp"
 #include "fuzz_support.hpp"
 #include "io/text.hpp"
@@ -42,6 +44,21 @@ void check_law(const frictionid::model::PressureLaw<double>& law) {
   }
   const auto m = frictionid::model::law_moments(law);
   for (int k = 0; k < 6; ++k) FRICTIONID_FUZZ_CHECK(std::isfinite(m[k]) && m[k] > 0);
+}
+
+// An accepted map is a grid of at least 2 x 2 strictly increasing, finite coordinates with
+// finite samples >= 0 and a positive, finite load.
+void check_map(const frictionid::model::PressureMap& m) {
+  FRICTIONID_FUZZ_CHECK(m.nx() >= 2 && m.ny() >= 2);
+  FRICTIONID_FUZZ_CHECK(m.sigma0.size() == m.nx() * m.ny());
+  for (const auto* grid : {&m.x, &m.y})
+    for (std::size_t i = 0; i < grid->size(); ++i) {
+      FRICTIONID_FUZZ_CHECK(std::isfinite((*grid)[i]));
+      if (i > 0) FRICTIONID_FUZZ_CHECK((*grid)[i - 1] < (*grid)[i]);
+    }
+  for (double s : m.sigma0) FRICTIONID_FUZZ_CHECK(std::isfinite(s) && s >= 0);
+  const auto moments = frictionid::model::map_moments(m);
+  FRICTIONID_FUZZ_CHECK(std::isfinite(moments.A0) && moments.A0 > 0);
 }
 
 }  // namespace
@@ -89,8 +106,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     check_law(law);
   });
 
+  expect_input_error_or_success([&] {
+    const auto spot = frictionid::parse_contact_option("ellipse:" + text);
+    FRICTIONID_FUZZ_CHECK(spot.q > 0 && spot.q <= 4);
+  });
+
   static frictionid::fuzz::ScratchFile table(".csv");
   const std::string spec = "table:" + table.write(data, size);
   expect_input_error_or_success([&] { check_law(frictionid::parse_pressure_law(spec)); });
+  expect_input_error_or_success([&] { check_map(*frictionid::load_pressure_map(table.path())); });
   return 0;
 }
