@@ -181,7 +181,8 @@ void closing_sections(std::string& h, const ModelComparison& c,
 
   line(h, "<h2 id=\"models\">Per-model reports</h2><ul>");
   for (const auto& f : c.fits)
-    line(h, fmt::format("<li><a href=\"{0}/report.html\">{0}</a></li>", escape(f.model)));
+    line(h, fmt::format("<li><a href=\"{}/report.html\">{}</a></li>",
+                        escape(compare_variant_directory(f.model)), escape(f.model)));
   line(h, "</ul>");
 
   for (const auto& p : plots) {
@@ -211,8 +212,10 @@ std::string compare_html_page(const ModelComparison& c, const std::vector<Report
   return h + html::provenance_section(provenance) + html::page_end();
 }
 
-std::string compare_html(const ModelComparison& c, const Dataset& d, const Provenance& p) {
-  return compare_html_page(c, compare_plots(c, d), p);
+std::string compare_html(const ModelComparison& c, const Dataset& d, const Provenance& p,
+                         const std::vector<std::string>& contacts) {
+  const ModelComparison named = compare_named_variants(c, contacts);
+  return compare_html_page(named, compare_plots(named, d), p);
 }
 
 }  // namespace frictionid

@@ -38,7 +38,46 @@ std::vector<std::string> all_parameter_names(const ModelComparison& c) {
   return names;
 }
 
+// The spot of fit k ("circle" when contacts is empty).
+const std::string& contact_of(const std::vector<std::string>& contacts, std::size_t k) {
+  static const std::string circle = "circle";
+  return k < contacts.size() ? contacts[k] : circle;
+}
+
 }  // namespace
+
+ModelComparison compare_named_variants(const ModelComparison& c,
+                                       const std::vector<std::string>& contacts) {
+  if (contacts.empty()) return c;
+  ModelComparison named = c;
+  for (std::size_t k = 0; k < c.fits.size(); ++k) {
+    named.fits[k].model = compare_variant_name(c, contacts, k);
+    if (c.fits[k].model == c.preferred_by_aic && c.delta_aic[k] == 0.0 &&
+        named.preferred_by_aic == c.preferred_by_aic)
+      named.preferred_by_aic = named.fits[k].model;
+    if (c.fits[k].model == c.preferred_by_bic && c.delta_bic[k] == 0.0 &&
+        named.preferred_by_bic == c.preferred_by_bic)
+      named.preferred_by_bic = named.fits[k].model;
+  }
+  return named;
+}
+
+std::string compare_variant_name(const ModelComparison& c, const std::vector<std::string>& contacts,
+                                 std::size_t k) {
+  const std::string& contact = contact_of(contacts, k);
+  return contact == "circle" ? c.fits[k].model : c.fits[k].model + "@" + contact;
+}
+
+std::string compare_variant_directory(const std::string& name) {
+  std::string out;
+  for (char ch : name) {
+    const bool safe = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') ||
+                      (ch >= '0' && ch <= '9') || ch == '.' || ch == '_' || ch == '+' ||
+                      ch == '=' || ch == '@' || ch == '-';
+    out += safe ? ch : '_';
+  }
+  return out;
+}
 
 std::vector<std::string> coefficient_notes(const ModelComparison& c) {
   std::vector<std::string> notes;
@@ -70,7 +109,9 @@ std::vector<std::string> coefficient_notes(const ModelComparison& c) {
   return notes;
 }
 
-nlohmann::ordered_json compare_json(const ModelComparison& c, const Provenance& provenance) {
+nlohmann::ordered_json compare_json(const ModelComparison& c, const Provenance& provenance,
+                                    const std::vector<std::string>& contacts) {
+  const ModelComparison named = compare_named_variants(c, contacts);
   ojson j;
   j["rows"] = c.fits.empty() ? 0 : c.fits.front().rows;
   ojson channels = ojson::array();
@@ -83,6 +124,7 @@ nlohmann::ordered_json compare_json(const ModelComparison& c, const Provenance& 
     ojson m;
     m["model"] = f.model;
     m["pressure"] = f.pressure;
+    if (contact_of(contacts, k) != "circle") m["contact"] = contact_of(contacts, k);
     ojson params;
     for (const auto& p : f.parameters)
       params[p.name] = {{"value", json_number(p.value)},
@@ -105,19 +147,21 @@ nlohmann::ordered_json compare_json(const ModelComparison& c, const Provenance& 
     models.push_back(m);
   }
   j["models"] = models;
-  j["preferred_by_aic"] = c.preferred_by_aic;
-  j["preferred_by_bic"] = c.preferred_by_bic;
+  j["preferred_by_aic"] = named.preferred_by_aic;
+  j["preferred_by_bic"] = named.preferred_by_bic;
   ojson implied = ojson::object();
   for (const char* name : {"a", "b", "m", "b_tilde", "p0"})
     if (c.implied_by_exact.count(name)) implied[name] = json_number(c.implied_by_exact.at(name));
   j["implied_by_exact"] = implied;
-  j["notes"] = coefficient_notes(c);
+  j["notes"] = coefficient_notes(named);
   j["provenance"] = provenance_json(provenance);
   return j;
 }
 
-std::string compare_markdown(const ModelComparison& c, const std::vector<std::string>& plots,
-                             const Provenance& provenance) {
+std::string compare_markdown(const ModelComparison& compared, const std::vector<std::string>& plots,
+                             const Provenance& provenance,
+                             const std::vector<std::string>& contacts) {
+  const ModelComparison c = compare_named_variants(compared, contacts);
   std::string md = "# frictionid compare\n\n";
   if (c.fits.empty()) return md + "No models were fitted.\n\n" + provenance_markdown(provenance);
   const FitResult& first = c.fits.front();
@@ -176,7 +220,8 @@ std::string compare_markdown(const ModelComparison& c, const std::vector<std::st
   for (const auto& n : notes) md += "- " + n + "\n";
   md += "\nThe same comparison on one page, plots inline: [compare.html](compare.html).\n";
   md += "\n## Per-model reports\n\n";
-  for (const auto& f : c.fits) md += fmt::format("- [{0}]({0}/report.md)\n", f.model);
+  for (const auto& f : c.fits)
+    md += fmt::format("- [{}]({}/report.md)\n", f.model, compare_variant_directory(f.model));
   md += "\n" + provenance_markdown(provenance);
   if (!plots.empty()) {
     md +=
@@ -188,33 +233,47 @@ std::string compare_markdown(const ModelComparison& c, const std::vector<std::st
 }
 
 std::vector<std::string> write_compare_report(const std::string& dir, const ModelComparison& c,
-                                              const Dataset& d, const Provenance& provenance) {
+                                              const Dataset& d, const Provenance& provenance,
+                                              const std::vector<std::string>& contacts) {
+  // Two fits whose reports would share a directory (the same model and spot) are refused
+  // before anything is written.
+  std::vector<std::string> subdirectories;
+  for (std::size_t k = 0; k < c.fits.size(); ++k) {
+    const std::string sub = compare_variant_directory(compare_variant_name(c, contacts, k));
+    if (std::find(subdirectories.begin(), subdirectories.end(), sub) != subdirectories.end())
+      throw std::invalid_argument("two compared fits would write their reports to " + dir + "/" +
+                                  sub + "; compare each model on a spot once");
+    subdirectories.push_back(sub);
+  }
   // Every file of the comparison, the models' reports too, in one transaction.
   ReportTransaction transaction(dir);
   const fs::path out = transaction.staging();
   std::vector<std::string> names;
-  for (const auto& f : c.fits) {
-    const fs::path sub = out / f.model;
+  for (std::size_t k = 0; k < c.fits.size(); ++k) {
+    const fs::path sub = out / subdirectories[k];
     std::error_code ec;
     fs::create_directory(sub, ec);
     if (ec)
-      throw std::runtime_error("cannot create " + (fs::path(dir) / f.model).string() + ": " +
-                               ec.message());
+      throw std::runtime_error("cannot create " + (fs::path(dir) / subdirectories[k]).string() +
+                               ": " + ec.message());
     ReportOptions model_options;
     model_options.provenance = provenance;
-    for (const auto& w : write_report_files(sub, f, d, model_options))
-      names.push_back((fs::path(f.model) / w).string());
+    model_options.contact = contact_of(contacts, k);
+    for (const auto& w : write_report_files(sub, c.fits[k], d, model_options))
+      names.push_back((fs::path(subdirectories[k]) / w).string());
   }
   write_staged_file(
       out / "compare.json",
-      compare_json(c, provenance).dump(2, ' ', false, ojson::error_handler_t::replace) + "\n");
+      compare_json(c, provenance, contacts).dump(2, ' ', false, ojson::error_handler_t::replace) +
+          "\n");
   names.push_back("compare.json");
 
-  const std::vector<ReportPlot> plot_list = compare_plots(c, d);
+  const ModelComparison named = compare_named_variants(c, contacts);
+  const std::vector<ReportPlot> plot_list = compare_plots(named, d);
   std::vector<std::string> plots;
   for (const auto& p : plot_list) plots.push_back(p.file);
-  write_staged_pages(out, "compare", compare_markdown(c, plots, provenance),
-                     compare_html_page(c, plot_list, provenance), plot_list, names);
+  write_staged_pages(out, "compare", compare_markdown(named, plots, provenance),
+                     compare_html_page(named, plot_list, provenance), plot_list, names);
   transaction.commit();
   std::vector<std::string> written;
   for (const auto& n : names) written.push_back((fs::path(dir) / n).string());

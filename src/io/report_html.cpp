@@ -267,11 +267,11 @@ void glossary_section(std::string& h) {
 }  // namespace
 
 std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots,
-                             const Provenance& provenance) {
+                             const Provenance& provenance, const std::string& contact) {
   std::string h;
   h.reserve(64 * 1024);
-  const std::string title =
-      fmt::format("frictionid fit: model {}, pressure {}", escape(r.model), escape(r.pressure));
+  const std::string title = fmt::format("frictionid fit: model {}, pressure {}{}", escape(r.model),
+                                        escape(r.pressure), escape(contact_words(contact)));
 
   h += html::page_start(title);
   line(h, "<h1>" + title + "</h1>");

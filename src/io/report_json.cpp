@@ -13,16 +13,18 @@ ojson interval(const std::optional<std::array<double, 2>>& ci) {
 }
 }  // namespace
 
-nlohmann::ordered_json report_json(const FitResult& r, const Provenance& p) {
-  ojson j = report_json(r);
+nlohmann::ordered_json report_json(const FitResult& r, const Provenance& p,
+                                   const std::string& contact) {
+  ojson j = report_json(r, contact);
   j["provenance"] = provenance_json(p);
   return j;
 }
 
-nlohmann::ordered_json report_json(const FitResult& r) {
+nlohmann::ordered_json report_json(const FitResult& r, const std::string& contact) {
   ojson j = ojson::object();
   j["model"] = r.model;
   j["pressure"] = r.pressure;
+  if (contact != "circle") j["contact"] = contact;
   j["rows"] = r.rows;
   ojson channels = ojson::array();
   for (Channel c : r.channels) channels.push_back(channel_name(c));

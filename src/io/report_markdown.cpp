@@ -53,12 +53,12 @@ std::string report_markdown(const FitResult& r) {
 }
 
 std::string report_markdown(const FitResult& r, const std::vector<std::string>& plot_files,
-                            const Provenance& provenance) {
+                            const Provenance& provenance, const std::string& contact) {
   std::string md;
   auto line = [&md](const std::string& s) { (md += s) += '\n'; };
 
-  line(fmt::format("# frictionid fit: model {}, pressure {}", one_line(r.model),
-                   one_line(r.pressure)));
+  line(fmt::format("# frictionid fit: model {}, pressure {}{}", one_line(r.model),
+                   one_line(r.pressure), one_line(contact_words(contact))));
   line("");
   line(fmt::format("{} rows; fitted channels: {}; loss: {}.", r.rows, join_channels(r.channels),
                    r.loss));

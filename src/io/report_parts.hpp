@@ -76,13 +76,20 @@ std::string plot_figure(const ReportPlot& p);
 
 // report.html from the plots make_plots gave.
 std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots,
-                             const Provenance& p = {});
+                             const Provenance& p = {}, const std::string& contact = "circle");
+
+// ", contact ellipse:0.6" for a report's title; empty for the circle (plain text).
+std::string contact_words(const std::string& contact);
 
 // Per channel every compared model over the measured data (compare_<channel>.svg), and
 // compare.html from them.
 std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d);
 std::string compare_html_page(const ModelComparison& c, const std::vector<ReportPlot>& plots,
                               const Provenance& p = {});
+// c as the compare pages show it: each fit named as its variant (compare_variant_name of
+// io/compare_report.hpp), and the preferred models by those names.
+ModelComparison compare_named_variants(const ModelComparison& c,
+                                       const std::vector<std::string>& contacts);
 
 // The provenance (io/provenance.hpp) as a Markdown section "## Traceability" with one bullet per
 // line, ending in an empty line.

@@ -56,6 +56,10 @@ std::string join_channels(const std::vector<Channel>& cs) {
   return out.empty() ? "none" : out;
 }
 
+std::string contact_words(const std::string& contact) {
+  return contact == "circle" ? std::string() : ", contact " + contact;
+}
+
 std::string parameter_note(const ParameterEstimate& p, const char* at_bound,
                            const char* undetermined) {
   std::vector<std::string> notes;

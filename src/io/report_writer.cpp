@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 using ojson = nlohmann::ordered_json;
 
 std::string report_html(const FitResult& r, const Dataset& d, const ReportOptions& o) {
-  return report_html_page(r, make_plots(r, d, o), o.provenance);
+  return report_html_page(r, make_plots(r, d, o), o.provenance, o.contact);
 }
 
 std::vector<std::string> write_report_files(const fs::path& dir, const FitResult& r,
@@ -24,13 +24,13 @@ std::vector<std::string> write_report_files(const fs::path& dir, const FitResult
   const std::vector<ReportPlot> plots = make_plots(r, d, o);
   std::vector<std::string> written;
   const std::string json =
-      report_json(r, o.provenance).dump(2, ' ', false, ojson::error_handler_t::replace);
+      report_json(r, o.provenance, o.contact).dump(2, ' ', false, ojson::error_handler_t::replace);
   write_staged_file(dir / "report.json", json + "\n");
   written.push_back("report.json");
   std::vector<std::string> plot_files;
   for (const auto& p : plots) plot_files.push_back(p.file);
-  write_staged_pages(dir, "report", report_markdown(r, plot_files, o.provenance),
-                     report_html_page(r, plots, o.provenance), plots, written);
+  write_staged_pages(dir, "report", report_markdown(r, plot_files, o.provenance, o.contact),
+                     report_html_page(r, plots, o.provenance, o.contact), plots, written);
   return written;
 }
 

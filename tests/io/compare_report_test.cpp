@@ -46,3 +46,54 @@ TEST(CompareReport, EveryFittedCoefficientIsSetAgainstTheOneTheExactFitImplies) 
 
 }  // namespace
 }  // namespace frictionid
+
+namespace frictionid {
+namespace {
+
+ModelComparison circle_and_ellipse() {
+  ModelComparison c;
+  c.fits = {fit_with("exact", {{"f", 0.9}}), fit_with("exact", {{"f", 0.91}, {"q", 0.7}})};
+  c.fits[0].aic = 10.0;
+  c.fits[1].aic = 4.0;
+  c.fits[0].bic = 12.0;
+  c.fits[1].bic = 7.0;
+  c.delta_aic = {6.0, 0.0};
+  c.delta_bic = {5.0, 0.0};
+  c.preferred_by_aic = c.preferred_by_bic = "exact";  // what compare_models names: the model
+  c.residual_autocorrelation.resize(2);
+  return c;
+}
+
+// The same model on two spots: compare.json keeps the model's name and states the spot; the
+// preferred fit is named MODEL@SPOT so that it is told apart from the circle's.
+TEST(CompareReport, FitsOnOtherSpotsStateTheirContactAndArePreferredByVariantName) {
+  const ModelComparison c = circle_and_ellipse();
+  const auto j = compare_json(c, {}, {"circle", "ellipse:0.7"});
+  EXPECT_EQ(j["models"][0]["model"], "exact");
+  EXPECT_FALSE(j["models"][0].contains("contact"));
+  EXPECT_EQ(j["models"][1]["model"], "exact");
+  EXPECT_EQ(j["models"][1]["contact"], "ellipse:0.7");
+  EXPECT_EQ(j["preferred_by_aic"], "exact@ellipse:0.7");
+  EXPECT_EQ(j["preferred_by_bic"], "exact@ellipse:0.7");
+  const std::string md = compare_markdown(c, {}, {}, {"circle", "ellipse:0.7"});
+  EXPECT_NE(md.find("| exact@ellipse:0.7 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("[exact@ellipse:0.7](exact@ellipse_0.7/report.md)"), std::string::npos) << md;
+}
+
+// Without spots (or on the circle alone) a comparison is what it always was.
+TEST(CompareReport, AComparisonOnTheCircleAloneIsUnchanged) {
+  const ModelComparison c = circle_and_ellipse();
+  EXPECT_EQ(compare_json(c, {}, {"circle", "circle"}), compare_json(c));
+  EXPECT_EQ(compare_markdown(c, {}, {}, {"circle", "circle"}), compare_markdown(c, {}));
+  EXPECT_EQ(compare_json(c)["preferred_by_aic"], "exact");
+}
+
+TEST(CompareReport, AVariantsDirectoryKeepsOnlySafeCharacters) {
+  EXPECT_EQ(compare_variant_directory("exact"), "exact");
+  EXPECT_EQ(compare_variant_directory("exact@ellipse:0.7"), "exact@ellipse_0.7");
+  EXPECT_EQ(compare_variant_directory("exact@map:../maps/foot print.csv"),
+            "exact@map_.._maps_foot_print.csv");
+}
+
+}  // namespace
+}  // namespace frictionid

@@ -515,3 +515,48 @@ TEST(WriteReport, UnwritableDirectoryThrows) {
 
 }  // namespace
 }  // namespace frictionid
+
+namespace frictionid {
+namespace {
+
+// A fit on another spot than the circle says so in report.json (after the pressure) and in the
+// titles of report.md and report.html.
+TEST(ReportContact, ASpotOtherThanTheCircleIsStatedInEveryFile) {
+  const Dataset d = make_dataset();
+  const FitResult r = make_result(d);
+  ScratchDir dir;
+  ReportOptions o;
+  o.contact = "ellipse:0.6";
+  write_report((dir.path() / "r").string(), r, d, o);
+  const ojson j = ojson::parse(slurp(dir.path() / "r" / "report.json"));
+  std::vector<std::string> top;
+  for (auto it = j.begin(); it != j.end(); ++it) top.push_back(it.key());
+  ASSERT_GE(top.size(), 3u);
+  EXPECT_EQ(top[1], "pressure");
+  EXPECT_EQ(top[2], "contact");
+  EXPECT_EQ(j["contact"], "ellipse:0.6");
+  const std::string title = "model corrected, pressure hertz, contact ellipse:0.6";
+  EXPECT_NE(slurp(dir.path() / "r" / "report.md").find("# frictionid fit: " + title),
+            std::string::npos);
+  EXPECT_NE(slurp(dir.path() / "r" / "report.html").find("<h1>frictionid fit: " + title + "</h1>"),
+            std::string::npos);
+}
+
+// The circle is the default and is not named: its reports are the bytes they always were.
+TEST(ReportContact, TheCircleIsNotStatedSoItsReportsStayAsTheyWere) {
+  const Dataset d = make_dataset();
+  const FitResult r = make_result(d);
+  ScratchDir dir;
+  ReportOptions circle;
+  circle.contact = "circle";
+  write_report((dir.path() / "default").string(), r, d);
+  write_report((dir.path() / "circle").string(), r, d, circle);
+  for (const char* name : {"report.json", "report.md", "report.html"}) {
+    EXPECT_EQ(slurp(dir.path() / "circle" / name), slurp(dir.path() / "default" / name)) << name;
+    EXPECT_EQ(slurp(dir.path() / "circle" / name).find("contact"), std::string::npos) << name;
+  }
+  EXPECT_FALSE(report_json(r, "circle").contains("contact"));
+}
+
+}  // namespace
+}  // namespace frictionid

@@ -21,13 +21,19 @@ struct ReportOptions {
                                     // takes at most 8 values
   int threads = 0;                  // threads drawing the plots (a channel each); 0: all cores
   Provenance provenance;            // printed on every page and in report.json
+  // The contact spot as --contact spells it (contact_spot_label of pressure_map_reader.hpp);
+  // stated in every file of the report unless it is the circle, whose reports stay as they were.
+  std::string contact = "circle";
 };
 
 // The report as JSON, keys in docs/design.md's order, parameters in FitResult order. Absent
 // optionals and non-finite doubles are null (an infinite bound, i.e. unbounded, is null too).
-nlohmann::ordered_json report_json(const FitResult& r);
+// `contact` (ReportOptions::contact) follows "pressure" as the key "contact" unless it is
+// "circle".
+nlohmann::ordered_json report_json(const FitResult& r, const std::string& contact = "circle");
 // The same with a last key "provenance" (io/provenance.hpp): what write_report writes.
-nlohmann::ordered_json report_json(const FitResult& r, const Provenance& p);
+nlohmann::ordered_json report_json(const FitResult& r, const Provenance& p,
+                                   const std::string& contact = "circle");
 
 // Human-readable Markdown report. This overload links the plots write_report would produce for
 // every fitted channel (collapse_<channel>.svg, fit_<channel>.svg, residuals_<channel>.svg).
@@ -36,7 +42,7 @@ std::string report_markdown(const FitResult& r);
 // Same, linking exactly `plot_files` (file names relative to the report directory); with an
 // empty list the Plots section says that no plots were produced.
 std::string report_markdown(const FitResult& r, const std::vector<std::string>& plot_files,
-                            const Provenance& p = {});
+                            const Provenance& p = {}, const std::string& contact = "circle");
 
 // Throws std::invalid_argument naming the option when a column in `o` is not in the dataset
 // (canonical columns, eps, channels or the file's extra columns) or a --plot-x column holds text.
