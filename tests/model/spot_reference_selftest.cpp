@@ -23,140 +23,17 @@ namespace sr = frictionid::testing::spot_ref;
 namespace sc = frictionid::testing::spot_cases;
 namespace fm = frictionid::model;
 
-constexpr double kPi = 3.14159265358979323846;
-
-struct Worst {
-  std::string what;
-  double err = 0.0;
-  void add(double e) { err = std::max(err, e); }
-  ~Worst() { std::cout << "[ worst    ] " << what << ": " << err << "\n"; }
-};
-
-std::string describe(const sr::Spot& s, const std::string& law, const sr::Params& p,
-                     const sr::Motion& m) {
-  std::ostringstream o;
-  o.precision(17);
-  o << (s.shape == sr::Shape::Ellipse ? "ellipse"
-        : s.shape == sr::Shape::Rect  ? "rect"
-                                      : "map")
-    << ":" << s.q << " " << law << " f=" << p.f << " kappa=" << p.kappa << " h=" << p.h
-    << " h_y=" << p.h_y << " v=(" << m.v_x << "," << m.v_y << ") omega=" << m.omega << " N=" << m.N
-    << " R=" << m.R;
-  return o.str();
-}
-
-// Random friction parameters with 1 + h x + h_y y > 0 on the spot (|h| + |h_y| Q_max < 0.9).
-sr::Params random_params(sc::Uniform& u, double y_extent) {
-  sr::Params p;
-  p.f = u.in(0.1, 1.2);
-  p.kappa = u.log_in(0.4, 2.5);
-  const double budget = 0.9 * u.u01();
-  const double share = u.u01();
-  p.h = u.sign() * budget * share;
-  p.h_y = u.sign() * budget * (1.0 - share) / y_extent;
-  return p;
-}
-
-// eps = |v|/(|omega| R) log-uniform in [0.05, 6], random slip direction and spin sign; every
-// `every`-th case pure spin (v = 0) and the next one pure sliding (omega = 0).
-sr::Motion random_motion(sc::Uniform& u, int i, int every = 7) {
-  sr::Motion m;
-  m.N = u.in(1.0, 300.0);
-  m.R = u.log_in(0.01, 2.0);
-  const double omega = u.sign() * u.log_in(0.2, 5.0);
-  const double eps = u.log_in(0.05, 6.0), alpha = u.in(-kPi, kPi);
-  const double v = eps * std::fabs(omega) * m.R;
-  m.v_x = v * std::cos(alpha);
-  m.v_y = v * std::sin(alpha);
-  m.omega = omega;
-  if (i % every == 0) m.v_x = m.v_y = 0.0;
-  if (i % every == 1) m.omega = 0.0;
-  return m;
-}
-
-// Errors of a against b relative to f N (forces) and f N R (torques), and N R for the moments.
-double friction_error(const sr::Result& a, const sr::Result& b, const sr::Params& p,
-                      const sr::Motion& m) {
-  const double F = p.f * m.N, M = F * m.R;
-  return std::max(
-      {std::fabs(a.T_x - b.T_x) / F, std::fabs(a.T_y - b.T_y) / F, std::fabs(a.M_z - b.M_z) / M});
-}
-double moment_error(const sr::Result& a, const sr::Result& b, const sr::Motion& m) {
-  return std::max(std::fabs(a.M_roll - b.M_roll), std::fabs(a.M_tilt - b.M_tilt)) / (m.N * m.R);
-}
-
-sr::Spot ellipse(double q, const sr::RadialLaw& law) {
-  sr::Spot s;
-  s.shape = sr::Shape::Ellipse;
-  s.q = q;
-  s.law = law;
-  return s;
-}
-sr::Spot rect(double q, const sr::RadialLaw& law) {
-  sr::Spot s = ellipse(q, law);
-  s.shape = sr::Shape::Rect;
-  return s;
-}
-// A map on [-1.1, 0.9] x [-0.8, 0.7] with some structure: a bump, a slope, a zero corner.
-sr::Spot sample_map() {
-  sr::Spot s;
-  s.shape = sr::Shape::Map;
-  s.grid.x = {-1.1, -0.6, -0.05, 0.3, 0.9};
-  s.grid.y = {-0.8, -0.2, 0.35, 0.7};
-  for (double y : s.grid.y)
-    for (double x : s.grid.x)
-      s.grid.sigma0.push_back(std::max(0.0, 1.2 - x * x - 1.5 * y * y + 0.3 * x));
-  s.grid.sigma0[0] = 0.0;
-  return s;
-}
-
-// Moments ∫ sigma0 x^a y^b (1 + h x + h_y y) dA of a map, cell by cell with the 2-point
-// Gauss–Legendre rule, exact for the bilinear interpolant times x^2 or y^2.
-struct MapMoments {
-  double n0, mx, my;
-};
-MapMoments map_moments(const sr::Grid& g, double h, double h_y) {
-  const double d = 0.5 / std::sqrt(3.0), nodes[2] = {0.5 - d, 0.5 + d};
-  MapMoments out{0, 0, 0};
-  const std::size_t nx = g.x.size();
-  for (std::size_t j = 0; j + 1 < g.y.size(); ++j)
-    for (std::size_t i = 0; i + 1 < nx; ++i) {
-      const double wx = g.x[i + 1] - g.x[i], wy = g.y[j + 1] - g.y[j];
-      for (double tx : nodes)
-        for (double ty : nodes) {
-          const double s = (1 - tx) * (1 - ty) * g.sigma0[j * nx + i] +
-                           tx * (1 - ty) * g.sigma0[j * nx + i + 1] +
-                           (1 - tx) * ty * g.sigma0[(j + 1) * nx + i] +
-                           tx * ty * g.sigma0[(j + 1) * nx + i + 1];
-          const double x = g.x[i] + tx * wx, y = g.y[j] + ty * wy;
-          const double w = 0.25 * wx * wy * s * (1.0 + h * x + h_y * y);
-          out.n0 += w;
-          out.mx += w * x;
-          out.my += w * y;
-        }
-    }
-  return out;
-}
-
-// Centre of pressure (X_c, Y_c) in units of R from closed-form moments.
-std::pair<double, double> centre_of_pressure(const sr::Spot& s, const sr::Params& p) {
-  const double Q = s.q;
-  switch (s.shape) {
-    case sr::Shape::Ellipse: {
-      // N0 = 2 pi Q m1, ∫sigma x = h pi Q m3, ∫sigma y = h_y pi Q^3 m3
-      const double r = s.law.moment(3) / (2.0 * s.law.moment(1));
-      return {p.h * r, p.h_y * Q * Q * r};
-    }
-    case sr::Shape::Rect:
-      // N0 = 4 Q m0, ∫sigma x = 4 Q h m2, ∫sigma y = 4 m0 h_y Q^3/3
-      return {p.h * s.law.moment(2) / s.law.moment(0), p.h_y * Q * Q / 3.0};
-    case sr::Shape::Map: {
-      const MapMoments mm = map_moments(s.grid, p.h, p.h_y);
-      return {mm.mx / mm.n0, mm.my / mm.n0};
-    }
-  }
-  return {0.0, 0.0};
-}
+using sc::centre_of_pressure;
+using sc::describe;
+using sc::ellipse;
+using sc::friction_error;
+using sc::kPi;
+using sc::moment_error;
+using sc::random_motion;
+using sc::random_params;
+using sc::rect;
+using sc::sample_map;
+using sc::Worst;
 
 // ---------------------------------------------------------------------------------------------
 
@@ -254,6 +131,34 @@ TEST(SpotReference, MRollAndMTiltEqualTheClosedFormLoadMoments) {
   }
 }
 
+// The hardest geometry for the elliptic-polar rule: the centre of rotation on or within 1e-8 of
+// the rim, where the rim singularity of Hertz meets the jump of the slip direction.
+TEST(SpotReference, ParametrisationsAgreeWhenTheCentreOfRotationSitsOnTheRim) {
+  Worst worst{"ellipse elliptic-polar vs Cartesian, centre on the rim"};
+  const std::vector<sc::LawCase> all = sc::law_cases();
+  for (const sc::LawCase& lc : {all[1], all[6], all[7]}) {  // hertz, annulus:0.75, table
+    for (double q : {0.3, 2.7}) {
+      for (double d : {0.0, 1e-8, -1e-8, -1e-4}) {
+        for (double angle : {0.3, 1.5707963267948966}) {
+          // c = (-v_y, v_x)/omega at elliptic radius 1 + d
+          const double cx = (1 + d) * std::cos(angle), cy = q * (1 + d) * std::sin(angle);
+          const double omega = 1.3;
+          const sr::Motion m{cy * omega, -cx * omega, omega, 1.0, 1.0};
+          const sr::Params p{1.0, 1.7, 0.3, 0.2 / q};
+          const sr::Spot s = ellipse(q, lc.ref);
+          const sr::Result a = sr::spot_reference(s, p, m);
+          const sr::Result b = sr::spot_reference(s, p, m, 1e-12, sr::Method::Cartesian);
+          SCOPED_TRACE(describe(s, lc.name, p, m));
+          const double e = friction_error(a, b, p, m);
+          worst.add(e);
+          EXPECT_LT(e, 1e-11);
+          EXPECT_LT(a.rel_error, 1e-11);
+        }
+      }
+    }
+  }
+}
+
 TEST(SpotReference, RectWithUniformLawEqualsTheUniformMapOnTheSameRectangle) {
   sc::Uniform u(0x3ec7);
   Worst worst{"rect uniform vs uniform map"};
@@ -322,11 +227,21 @@ double F(double a, double b) {
 TEST(SpotReference, UniformRectangleMatchesTheClosedFormAtAnyCentreOfRotation) {
   sc::Uniform u(0xc105ed);
   Worst worst{"uniform rect vs corner-sum closed form"};
-  for (int i = 0; i < 16; ++i) {
+  // Random centres, then centres on a corner, on an edge, and 1e-9 inside or outside a corner
+  // (in units of the half-sides).
+  const std::vector<std::pair<double, double>> fixed = {
+      {1.0, 1.0},   {-1.0, 1.0},          {1.0, 0.3},
+      {-0.4, -1.0}, {1 + 1e-9, 1 + 1e-9}, {1 - 1e-9, -1 + 1e-9}};
+  for (int i = 0; i < 16 + static_cast<int>(fixed.size()); ++i) {
     const double q = u.log_in(0.3, 3.0);
     sr::Params p{u.in(0.1, 1.2), i % 2 == 0 ? 1.0 : u.log_in(0.4, 2.5), 0.0, 0.0};
     sr::Motion m = random_motion(u, i + 2, 100);  // spinning
     if (i == 3) m.v_x = m.v_y = 0.0;
+    if (i >= 16) {  // c = (-v_y, v_x)/(omega R)
+      const auto [fx, fy] = fixed[static_cast<std::size_t>(i - 16)];
+      m.v_x = fy * q * m.omega * m.R;
+      m.v_y = -fx * m.omega * m.R;
+    }
     const double w = m.omega * m.R, cx = -m.v_y / w, cy = m.v_x / w;
     const double a0 = -1.0 - cx, a1 = 1.0 - cx, b0 = -q - cy, b1 = q - cy;
     const double Ix = H(a1, b1) - H(a1, b0) - H(a0, b1) + H(a0, b0);
