@@ -22,6 +22,11 @@ struct FrictionParams {
   T f;      // friction coefficient along x
   T kappa;  // anisotropy: coefficient kappa f along y
   T h;      // rolling tilt of the pressure (per contact radius)
+  // The tilt across the rolling direction, sigma0 (1 + h x/R + h_y y/R) (docs/physics.md §9.2),
+  // read only when tilt_y is set: without it every expression is the one of the tilt along x,
+  // bit for bit.
+  T h_y = T(0);
+  bool tilt_y = false;
 };
 
 // Combines radial integrals into resultants; shared by the ring quadrature and the fast paths.
@@ -33,11 +38,25 @@ Resultants<T> combine_ring_integrals(const FrictionParams<T>& p, const SlipGeome
   const T d11 = T(ca * ca) + p.kappa * (sa * sa);
   const T d22 = T(sa * sa) + p.kappa * (ca * ca);
   const T d12 = (p.kappa - T(1)) * (sa * ca);
+  Resultants<T> r;
+  if (p.tilt_y) {
+    // The formulas see the tilt vector through its projections on the slip, h.e_par = h cos a
+    // + h_y sin a, and across it, -h.e_perp = h sin a - h_y cos a (linear in the tilt).
+    const T h_par = p.h * ca + p.h_y * sa, h_across = p.h * sa - p.h_y * ca;
+    const T base = P + h_across * s * S;
+    const T tilt = h_par * s * Q;
+    const T t_par = force_scale * (d11 * base + d12 * tilt);
+    const T t_perp = force_scale * (d12 * base + d22 * tilt);
+    r.T_x = t_par * ca - t_perp * sa;
+    r.T_y = t_par * sa + t_perp * ca;
+    r.M_z = torque_scale *
+            (s * (d22 * Q + d11 * S) + h_par * d12 * (X - U) - h_across * (d22 * U - d11 * V));
+    return r;
+  }
   const T base = P + p.h * (s * sa) * S;  // sliding + tilt-along-slip part
   const T tilt = p.h * (s * ca) * Q;      // tilt across the slip
   const T t_par = force_scale * (d11 * base + d12 * tilt);
   const T t_perp = force_scale * (d12 * base + d22 * tilt);
-  Resultants<T> r;
   r.T_x = t_par * ca - t_perp * sa;
   r.T_y = t_par * sa + t_perp * ca;
   r.M_z = torque_scale *
@@ -90,13 +109,16 @@ class ExactModel {
                                  torque_scale);
     }
     r.M_roll = p_.h * k.N * k.R * moments_[3] / (T(2) * moments_[1]);
+    if (p_.tilt_y) r.M_tilt = p_.h_y * k.N * k.R * moments_[3] / (T(2) * moments_[1]);
     r.N = T(k.N);
     return r;
   }
 
  private:
+  // The aligned fast paths leave out the integrals U, V, X, which a tilt across the rolling
+  // direction needs even for aligned slip.
   bool aligned_spin(const Kinematics& k, const SlipGeometry& g) const {
-    return k.v_y == 0.0 && g.spin_sign != 0.0;
+    return k.v_y == 0.0 && g.spin_sign != 0.0 && !p_.tilt_y;
   }
   bool use_hertz_fast_path(const Kinematics& k, const SlipGeometry& g) const {
     return law_.kind == PressureKind::Hertz && aligned_spin(k, g) &&

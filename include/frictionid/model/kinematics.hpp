@@ -14,10 +14,12 @@ struct Kinematics {
 };
 
 // Resistance convention (docs/physics.md §1): T = -∫tau dS, M_z = -∫(r x tau).e3 dS,
-// M_roll = ∫ sigma x dS (about y), N = ∫ sigma dS.
+// M_roll = ∫ sigma x dS (about y), N = ∫ sigma dS, M_tilt = ∫ sigma y dS (about x; zero
+// unless the pressure tilts across the rolling direction, docs/physics.md §9.2).
 template <typename T>
 struct Resultants {
   T T_x, T_y, M_z, M_roll, N;
+  T M_tilt = T(0);
 };
 
 // The slip geometry shared by every model: speed, direction, spin sign and eps = v/(|omega| R).

@@ -1,0 +1,451 @@
+// The friction integrals of any contact spot about the instantaneous centre of rotation
+// (docs/physics.md §9.3). With the centre of rotation c = (-v_y, v_x)/(omega R) (units of R),
+// the slip direction at a point r is s e3 x (r - c)/|r - c| (s = sign of omega): it depends only
+// on the angle phi of r - c. In polar coordinates (r, phi) about c the integrand is therefore
+// smooth along every ray, and the only non-smooth places are where a ray meets the spot's rim,
+// a step or kink of the pressure, or a corner: the radial integrals split there, and the angular
+// integral splits at the directions of corners and the tangents to rims and steps.
+//
+// For the ellipse and the rectangle the polar coordinates are taken in the reference frame
+// (X, Y) = (x, y/q), where the spot is the unit disk or the square [-1, 1]^2: a ray there is a ray
+// in the physical plane too (a linear map keeps lines), with physical direction (cos phi, q sin
+// phi) and area element q r dr dphi.
+//
+// Everything here is plain double: the integrals depend on the kinematics, the spot and the
+// pressure shape only, never on f, kappa, h or h_y (spot_model.hpp combines them).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include <frictionid/model/contact_spot.hpp>
+#include <frictionid/model/gauss_legendre_rule.hpp>
+#include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model/tanh_sinh_rule.hpp>
+
+namespace frictionid::model {
+
+// With e = e3 x (r - c)/|r - c| = (-(y - c_y), x - c_x)/|r - c| and the weights
+// w = sigma0 * {1, x, y} (index 0, 1, 2):
+//   ex[w] = ∫ w e_x dA, ey[w] = ∫ w e_y dA, x_ey[w] = ∫ w x e_y dA, y_ex[w] = ∫ w y e_x dA,
+// in units of R^2 (ex, ey) and R^3 (x_ey, y_ex) times the pressure's own scale.
+struct SpotIntegrals {
+  std::array<double, 3> ex{}, ey{}, x_ey{}, y_ex{};
+
+  SpotIntegrals& operator+=(const SpotIntegrals& o) {
+    for (int w = 0; w < 3; ++w) {
+      ex[w] += o.ex[w];
+      ey[w] += o.ey[w];
+      x_ey[w] += o.x_ey[w];
+      y_ex[w] += o.y_ex[w];
+    }
+    return *this;
+  }
+  SpotIntegrals operator-(const SpotIntegrals& o) const {
+    SpotIntegrals r = *this;
+    for (int w = 0; w < 3; ++w) {
+      r.ex[w] -= o.ex[w];
+      r.ey[w] -= o.ey[w];
+      r.x_ey[w] -= o.x_ey[w];
+      r.y_ex[w] -= o.y_ex[w];
+    }
+    return r;
+  }
+  SpotIntegrals operator*(double s) const {
+    SpotIntegrals r = *this;
+    for (int w = 0; w < 3; ++w) {
+      r.ex[w] *= s;
+      r.ey[w] *= s;
+      r.x_ey[w] *= s;
+      r.y_ex[w] *= s;
+    }
+    return r;
+  }
+};
+
+// The rules of the two nested integrals. The defaults (tanh-sinh, step 1/8) keep the integrals
+// within ~1e-11 of the spot's scale; fine_rule() in both reaches ~1e-14 at ~5x the cost.
+struct SpotRules {
+  const std::vector<QuadratureNode>* radial = &radial_rule();
+  const std::vector<QuadratureNode>* angular = &radial_rule();
+};
+
+class SpotIntegrator {
+ public:
+  // law is ignored for a map. q is the aspect of an ellipse or a rectangle (1 otherwise).
+  SpotIntegrator(const ContactSpot& spot, const PressureLaw<double>& law, double q,
+                 SpotRules rules = {})
+      : kind_(spot.kind == SpotKind::Circle ? SpotKind::Ellipse : spot.kind),
+        law_(law),
+        q_(spot.has_aspect() ? q : 1.0),
+        map_(spot.map),
+        rules_(rules) {
+    if (kind_ != SpotKind::Map) {
+      // Every breakpoint costs angular pieces; a fine table's thousands of kinks are left to
+      // the rules, its steps never.
+      std::vector<double> kept = law_.breakpoints();
+      if (kept.size() > kMaxBreaks) kept = law_.steps();
+      for (double b : kept)
+        if (b > 0.0 && b < 1.0) breaks_.push_back(b);
+    }
+  }
+
+  static constexpr std::size_t kMaxBreaks = 64;
+
+  double q() const { return q_; }
+
+  // The integrals for the centre of rotation at physical (cx, cy), units of R.
+  SpotIntegrals operator()(double cx, double cy) const {
+    if (law_.kind == PressureKind::Ring && kind_ != SpotKind::Map) return rim_integrals(cx, cy);
+    const double CX = cx, CY = cy / q_;  // reference coordinates of the centre
+    std::vector<double> cuts;
+    angular_pieces(CX, CY, cuts);
+    SpotIntegrals out;
+    Ray ray;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      const double a = cuts[k], b = cuts[k + 1], len = b - a;
+      if (!(len > 0.0)) continue;
+      const auto& rule = *rules_.angular;
+      for (const auto& node : rule) {
+        const double phi = a + len * node.from_left;
+        const double c = std::cos(phi), s = std::sin(phi);
+        const std::array<double, 6> m = ray_moments(CX, CY, c, s, ray);
+        accumulate(out, node.weight * len, c, s, m);
+      }
+    }
+    return out;
+  }
+
+ private:
+  struct Ray {
+    std::vector<double> cuts;  // radial split points, ascending
+  };
+
+  static const std::vector<QuadratureNode>& cell_rule() {
+    // Along a ray inside one cell of a map, sigma0 is quadratic in r: with r dr and weights of
+    // degree <= 2 the integrand has degree <= 5, which 3 Gauss points integrate exactly.
+    static const std::vector<QuadratureNode> rule = make_gauss_legendre_rule(3);
+    return rule;
+  }
+
+  // Adds one direction's contribution. m = ∫ sigma0 r {1, x, y, x^2, xy, y^2} dr along the ray.
+  void accumulate(SpotIntegrals& out, double w, double c, double s,
+                  const std::array<double, 6>& m) const {
+    // Physical direction of the ray (c, q s); e = e3 x that, normalised; dA = q r dr dphi.
+    const double len = std::sqrt(c * c + q_ * q_ * s * s);
+    const double ex = -q_ * s / len, ey = c / len, W = w * q_;
+    out.ex[0] += W * ex * m[0];
+    out.ex[1] += W * ex * m[1];
+    out.ex[2] += W * ex * m[2];
+    out.ey[0] += W * ey * m[0];
+    out.ey[1] += W * ey * m[1];
+    out.ey[2] += W * ey * m[2];
+    out.x_ey[0] += W * ey * m[1];
+    out.x_ey[1] += W * ey * m[3];
+    out.x_ey[2] += W * ey * m[4];
+    out.y_ex[0] += W * ex * m[2];
+    out.y_ex[1] += W * ex * m[4];
+    out.y_ex[2] += W * ex * m[5];
+  }
+
+  // --- Angular pieces -------------------------------------------------------------------------
+
+  // Cuts of the angular range about the reference centre (CX, CY): ascending angles from the
+  // first to the last, covering either the full turn or, from outside the spot, the cone that
+  // sees it.
+  void angular_pieces(double CX, double CY, std::vector<double>& cuts) const {
+    std::vector<double> marks;
+    double lo = 0.0, hi = 0.0;
+    bool full = true;
+    switch (kind_) {
+      case SpotKind::Circle:
+      case SpotKind::Ellipse: {
+        const double p = std::hypot(CX, CY);
+        const double beta = p > 0.0 ? std::atan2(CY, CX) : 0.0;
+        const double inward = beta + M_PI;
+        marks = {beta, beta + 0.5 * M_PI, inward, beta - 0.5 * M_PI};
+        std::vector<double> radii = breaks_;
+        radii.push_back(1.0);
+        for (double B : radii) {
+          if (p > B) {
+            const double half = std::asin(B / p);
+            marks.push_back(inward - half);
+            marks.push_back(inward + half);
+          }
+        }
+        if (p > 1.0) {
+          full = false;
+          const double half = std::asin(1.0 / p);
+          lo = inward - half;
+          hi = inward + half;
+        }
+        break;
+      }
+      case SpotKind::Rect:
+      case SpotKind::Map: {
+        double x0 = -1, x1 = 1, y0 = -1, y1 = 1;
+        std::vector<double> xs, ys;
+        if (kind_ == SpotKind::Map) {
+          xs = map_->x;
+          ys = map_->y;
+          x0 = xs.front();
+          x1 = xs.back();
+          y0 = ys.front();
+          y1 = ys.back();
+        } else {
+          xs = {-1.0, 0.0, 1.0};
+          for (double b : breaks_) {
+            xs.push_back(b);
+            xs.push_back(-b);
+          }
+          ys = {-1.0, 1.0};
+        }
+        // Corners of every cell (or of every strip of the rectangle's law).
+        for (double X : xs)
+          for (double Y : ys)
+            if (X != CX || Y != CY) marks.push_back(std::atan2(Y - CY, X - CX));
+        const bool inside = CX >= x0 && CX <= x1 && CY >= y0 && CY <= y1;
+        if (!inside) {
+          // The box is convex: seen from outside, its corners span less than a half turn
+          // about the direction to its centre.
+          full = false;
+          const double mid = std::atan2(0.5 * (y0 + y1) - CY, 0.5 * (x0 + x1) - CX);
+          lo = HUGE_VAL;
+          hi = -HUGE_VAL;
+          for (double X : {x0, x1})
+            for (double Y : {y0, y1}) {
+              const double d = std::remainder(std::atan2(Y - CY, X - CX) - mid, 2 * M_PI);
+              lo = std::min(lo, mid + d);
+              hi = std::max(hi, mid + d);
+            }
+        }
+        break;
+      }
+    }
+    if (full) {
+      lo = marks.front();
+      hi = lo + 2 * M_PI;
+    }
+    cuts.clear();
+    cuts.push_back(lo);
+    for (double m : marks) {
+      // The mark's angle in [lo, lo + 2 pi).
+      double a = lo + std::fmod(std::fmod(m - lo, 2 * M_PI) + 2 * M_PI, 2 * M_PI);
+      if (a > lo && a < hi) cuts.push_back(a);
+    }
+    cuts.push_back(hi);
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  }
+
+  // --- One ray --------------------------------------------------------------------------------
+
+  // ∫ sigma0 r {1, x, y, x^2, xy, y^2} dr along the ray from (CX, CY) in reference direction
+  // (c, s), x and y physical.
+  std::array<double, 6> ray_moments(double CX, double CY, double c, double s, Ray& ray) const {
+    std::array<double, 6> m{};
+    switch (kind_) {
+      case SpotKind::Circle:
+      case SpotKind::Ellipse:
+        ellipse_ray(CX, CY, c, s, ray, m);
+        break;
+      case SpotKind::Rect:
+        rect_ray(CX, CY, c, s, ray, m);
+        break;
+      case SpotKind::Map:
+        map_ray(CX, CY, c, s, ray, m);
+        break;
+    }
+    return m;
+  }
+
+  void add_point(std::array<double, 6>& m, double w, double sigma, double r, double x,
+                 double y) const {
+    const double g = w * sigma * r;
+    m[0] += g;
+    m[1] += g * x;
+    m[2] += g * y;
+    m[3] += g * x * x;
+    m[4] += g * x * y;
+    m[5] += g * y * y;
+  }
+
+  void ellipse_ray(double CX, double CY, double c, double s, Ray& ray,
+                   std::array<double, 6>& m) const {
+    // |C + r e|^2 = (r + b)^2 + d^2 with b = C.e and d = C x e the ray's distance from the
+    // centre; 1 - rho^2 = (r_out - r)(r - r_back), r_out/back = -b +- sqrt(1 - d^2).
+    const double b = CX * c + CY * s, d = CX * s - CY * c;
+    const double disc = (1.0 - d) * (1.0 + d);
+    if (!(disc > 0.0)) return;
+    const double root = std::sqrt(disc);
+    const double r_out = -b + root, r_back = -b - root;
+    if (!(r_out > 0.0)) return;
+    const double r_in = std::max(0.0, r_back);
+    ray.cuts.clear();
+    ray.cuts.push_back(r_in);
+    for (double B : breaks_) {
+      const double disc_b = (B - d) * (B + d);
+      if (!(disc_b > 0.0)) continue;
+      const double rb = std::sqrt(disc_b);
+      for (double r : {-b - rb, -b + rb})
+        if (r > r_in && r < r_out) ray.cuts.push_back(r);
+    }
+    ray.cuts.push_back(r_out);
+    std::sort(ray.cuts.begin(), ray.cuts.end());
+    for (std::size_t k = 0; k + 1 < ray.cuts.size(); ++k) {
+      const double a = ray.cuts[k], e = ray.cuts[k + 1], len = e - a;
+      const bool at_rim = k + 2 == ray.cuts.size(), from_back = k == 0 && r_in == r_back;
+      for (const auto& node : *rules_.radial) {
+        const double r = a + len * node.from_left;
+        // Distances to both crossings of the rim along the ray, exact near them.
+        const double to_out = at_rim ? len * node.from_right : r_out - r;
+        const double to_back = from_back ? len * node.from_left : r - r_back;
+        const double rim = std::max(0.0, to_out * to_back);  // 1 - rho^2
+        const double rho = std::sqrt(std::max(0.0, 1.0 - rim));
+        const double sigma = law_(rho, rim / (1.0 + rho));
+        const double X = CX + r * c, Y = CY + r * s;
+        add_point(m, node.weight * len, sigma, r, X, q_ * Y);
+      }
+    }
+  }
+
+  // Entry and exit of the ray through the box [x0, x1] x [y0, y1]; false if it misses.
+  static bool clip(double CX, double CY, double c, double s, double x0, double x1, double y0,
+                   double y1, double& r_in, double& r_out) {
+    r_in = 0.0;
+    r_out = HUGE_VAL;
+    auto slab = [&](double C, double e, double lo, double hi) {
+      if (e == 0.0) return C >= lo && C <= hi;
+      double t0 = (lo - C) / e, t1 = (hi - C) / e;
+      if (t0 > t1) std::swap(t0, t1);
+      r_in = std::max(r_in, t0);
+      r_out = std::min(r_out, t1);
+      return true;
+    };
+    if (!slab(CX, c, x0, x1) || !slab(CY, s, y0, y1)) return false;
+    return r_out > r_in;
+  }
+
+  void rect_ray(double CX, double CY, double c, double s, Ray& ray,
+                std::array<double, 6>& m) const {
+    double r_in, r_out;
+    if (!clip(CX, CY, c, s, -1.0, 1.0, -1.0, 1.0, r_in, r_out)) return;
+    ray.cuts.clear();
+    ray.cuts.push_back(r_in);
+    if (c != 0.0) {
+      std::vector<double> xs = {0.0};
+      for (double B : breaks_) {
+        xs.push_back(B);
+        xs.push_back(-B);
+      }
+      for (double X : xs) {
+        const double r = (X - CX) / c;
+        if (r > r_in && r < r_out) ray.cuts.push_back(r);
+      }
+    }
+    ray.cuts.push_back(r_out);
+    std::sort(ray.cuts.begin(), ray.cuts.end());
+    // Where a segment ends on the edges |X| = 1, 1 - |X| is |c| times the distance to that end.
+    const bool exits_side = c != 0.0 && std::fabs(std::fabs(CX + r_out * c) - 1.0) < 1e-12;
+    const bool enters_side =
+        c != 0.0 && r_in > 0.0 && std::fabs(std::fabs(CX + r_in * c) - 1.0) < 1e-12;
+    for (std::size_t k = 0; k + 1 < ray.cuts.size(); ++k) {
+      const double a = ray.cuts[k], e = ray.cuts[k + 1], len = e - a;
+      const bool last = k + 2 == ray.cuts.size(), first = k == 0;
+      for (const auto& node : *rules_.radial) {
+        const double r = a + len * node.from_left;
+        const double X = CX + r * c, Y = CY + r * s;
+        const double ax = std::fabs(X);
+        double omr = 1.0 - ax;
+        if (last && exits_side)
+          omr = std::fabs(c) * len * node.from_right;
+        else if (first && enters_side)
+          omr = std::fabs(c) * len * node.from_left;
+        omr = std::max(0.0, omr);
+        const double sigma = law_(std::min(1.0, ax), omr);
+        add_point(m, node.weight * len, sigma, r, X, q_ * Y);
+      }
+    }
+  }
+
+  void map_ray(double CX, double CY, double c, double s, Ray& ray, std::array<double, 6>& m) const {
+    const PressureMap& mp = *map_;
+    double r_in, r_out;
+    if (!clip(CX, CY, c, s, mp.x.front(), mp.x.back(), mp.y.front(), mp.y.back(), r_in, r_out))
+      return;
+    ray.cuts.clear();
+    ray.cuts.push_back(r_in);
+    if (c != 0.0)
+      for (double X : mp.x) {
+        const double r = (X - CX) / c;
+        if (r > r_in && r < r_out) ray.cuts.push_back(r);
+      }
+    if (s != 0.0)
+      for (double Y : mp.y) {
+        const double r = (Y - CY) / s;
+        if (r > r_in && r < r_out) ray.cuts.push_back(r);
+      }
+    ray.cuts.push_back(r_out);
+    std::sort(ray.cuts.begin(), ray.cuts.end());
+    for (std::size_t k = 0; k + 1 < ray.cuts.size(); ++k) {
+      const double a = ray.cuts[k], e = ray.cuts[k + 1], len = e - a;
+      if (!(len > 0.0)) continue;
+      for (const auto& node : cell_rule()) {
+        const double r = a + len * node.from_left;
+        const double X = CX + r * c, Y = CY + r * s;
+        add_point(m, node.weight * len, mp(X, Y), r, X, Y);
+      }
+    }
+  }
+
+  // --- The ring law: all load on the rim ------------------------------------------------------
+
+  // sigma0 = delta(rho - 1) on the ellipse's rim (line density q dtheta in reference polar
+  // coordinates), or delta(|X| - 1) on the rectangle's sides (density q dY).
+  SpotIntegrals rim_integrals(double cx, double cy) const {
+    SpotIntegrals out;
+    auto add = [&](double w, double x, double y) {
+      const double dx = x - cx, dy = y - cy, len = std::hypot(dx, dy);
+      if (!(len > 0.0)) return;
+      const double ex = -dy / len, ey = dx / len, W = w * q_;
+      const double wt[3] = {1.0, x, y};
+      for (int k = 0; k < 3; ++k) {
+        out.ex[k] += W * wt[k] * ex;
+        out.ey[k] += W * wt[k] * ey;
+        out.x_ey[k] += W * wt[k] * x * ey;
+        out.y_ex[k] += W * wt[k] * y * ex;
+      }
+    };
+    const auto& rule = *rules_.angular;
+    if (kind_ == SpotKind::Rect) {
+      const double CY = std::clamp(cy / q_, -1.0, 1.0);
+      for (double side : {-1.0, 1.0})
+        for (auto [a, e] : {std::pair{-1.0, CY}, std::pair{CY, 1.0}}) {
+          const double len = e - a;
+          if (!(len > 0.0)) continue;
+          for (const auto& node : rule)
+            add(node.weight * len, side, q_ * (a + len * node.from_left));
+        }
+      return out;
+    }
+    const double t0 = std::atan2(cy / q_, cx);
+    for (double start : {t0, t0 + M_PI})
+      for (const auto& node : rule) {
+        const double t = start + M_PI * node.from_left;
+        add(node.weight * M_PI, std::cos(t), q_ * std::sin(t));
+      }
+    return out;
+  }
+
+  SpotKind kind_;
+  PressureLaw<double> law_;
+  double q_;
+  std::shared_ptr<const PressureMap> map_;
+  SpotRules rules_;
+  std::vector<double> breaks_;  // the law's breakpoints in (0, 1)
+};
+
+}  // namespace frictionid::model
