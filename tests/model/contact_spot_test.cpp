@@ -2,13 +2,11 @@
 // the independent 2-D oracle (spot_reference.hpp, itself checked in spot_reference_selftest.cpp)
 // and against what holds without it: the circle model at Q = 1, the friction bound, rect = map,
 // and pure sliding in closed form. The comparison tests print the worst error they saw.
-#include <gtest/gtest.h>
-
-#if __has_include(<frictionid/model/spot_model.hpp>)
-
 #include <frictionid/model/contact_spot.hpp>
 #include <frictionid/model/exact_model.hpp>
 #include <frictionid/model/spot_model.hpp>
+
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
@@ -268,12 +266,3 @@ TEST(ContactSpot, PureSlidingGivesFNDTimesTheSlipDirectionAndTheTiltTorque) {
 }
 
 }  // namespace
-
-#else
-
-// The production spot model (include/frictionid/model/spot_model.hpp) is not on this branch yet.
-TEST(ContactSpot, NeedsTheProductionSpotModel) {
-  GTEST_SKIP() << "include/frictionid/model/spot_model.hpp is missing";
-}
-
-#endif
