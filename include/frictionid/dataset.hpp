@@ -10,13 +10,15 @@
 
 namespace frictionid {
 
-enum class Channel : int { T_x = 0, T_y = 1, M_z = 2, M_roll = 3 };
-inline constexpr int kChannelCount = 4;
-inline constexpr std::array<Channel, kChannelCount> kAllChannels = {Channel::T_x, Channel::T_y,
-                                                                    Channel::M_z, Channel::M_roll};
+// M_tilt = ∫sigma y dS, beside M_roll = ∫sigma x dS: the pressure's tilt across the rolling
+// direction (docs/physics.md §9.2).
+enum class Channel : int { T_x = 0, T_y = 1, M_z = 2, M_roll = 3, M_tilt = 4 };
+inline constexpr int kChannelCount = 5;
+inline constexpr std::array<Channel, kChannelCount> kAllChannels = {
+    Channel::T_x, Channel::T_y, Channel::M_z, Channel::M_roll, Channel::M_tilt};
 
 inline const char* channel_name(Channel c) {
-  static constexpr const char* names[kChannelCount] = {"T_x", "T_y", "M_z", "M_roll"};
+  static constexpr const char* names[kChannelCount] = {"T_x", "T_y", "M_z", "M_roll", "M_tilt"};
   return names[static_cast<int>(c)];
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <frictionid/dataset.hpp>
+#include <frictionid/model/contact_spot.hpp>
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/parameters.hpp>
 
@@ -49,6 +50,9 @@ struct FitSettings {
   ModelKind model = ModelKind::Seed;
   model::PressureLaw<double> law = model::PressureLaw<double>::hertz();
   std::string law_label = "hertz";
+  // The contact spot (docs/physics.md §9). Anything but the circle needs the exact model; its
+  // aspect q is params[kQ] (fixed at the spot's q unless freed).
+  model::ContactSpot contact;
   std::array<ParameterSetting, kParamCount> params =
       default_parameter_settings(model::PressureLaw<double>::hertz());
   std::vector<Channel> channels;  // empty: every channel some row measures
@@ -80,9 +84,15 @@ struct FitSettings {
   double parameter_tolerance = 1e-13;
   int threads = 0;  // threads for the passes over the rows; 0: every hardware thread
 
-  // The settings of a fit of `model` with pressure `law` (named `label` in reports): default
-  // bounds and the initial values the law implies.
-  static FitSettings defaults(ModelKind model, model::PressureLaw<double> law, std::string label);
+  // The settings of a fit of `model` with pressure `law` (named `label` in reports) on `contact`:
+  // default bounds and the initial values the law and the spot imply. On any spot but the circle
+  // h_y is free; q starts, and stays, at the spot's aspect.
+  static FitSettings defaults(ModelKind model, model::PressureLaw<double> law, std::string label,
+                              model::ContactSpot contact = {});
+
+  // The parameters the model reads, in report order (model_parameters of parameters.hpp); h_y
+  // joins on the circle when tilt_y (the data measures M_tilt).
+  std::vector<int> used_parameters(bool tilt_y = false) const;
 
   // The setting of parameter `name` ("f", "kappa", ...); throws std::invalid_argument naming the
   // parameter when the name is unknown.

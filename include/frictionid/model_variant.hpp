@@ -16,6 +16,8 @@
 #include <frictionid/model/coefficients.hpp>
 #include <frictionid/model/exact_model.hpp>
 #include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model/spot_coefficients.hpp>
+#include <frictionid/model/spot_model.hpp>
 #include <frictionid/parameters.hpp>
 
 namespace frictionid {
@@ -36,6 +38,28 @@ inline std::array<double, kParamCount> default_parameters(const model::PressureL
   p[kN] = law.kind == model::PressureKind::Power ? law.n : 0.5;
   p[kP0] = c.p0;
   p[kBTilde] = c.b_tilde;
+  p[kHy] = 0.0;
+  p[kQ] = 1.0;
+  return p;
+}
+
+// The same for any contact spot: the coefficients by the spot's own slope matching
+// (spot_coefficients.hpp) and q from the spot.
+inline std::array<double, kParamCount> default_parameters(const model::PressureLaw<double>& law,
+                                                          const model::ContactSpot& spot,
+                                                          double f = 1.0, double kappa = 1.0,
+                                                          double h = 0.0) {
+  if (spot.kind == model::SpotKind::Circle) return default_parameters(law, f, kappa, h);
+  std::array<double, kParamCount> p = default_parameters(law, f, kappa, h);
+  const model::PressureLaw<double>& shape =
+      spot.kind == model::SpotKind::Map ? model::PressureLaw<double>::uniform() : law;
+  const auto c = model::spot_coefficients(spot, shape, spot.q, kappa);
+  p[kA] = c.a;
+  p[kB] = c.b;
+  p[kM] = c.m;
+  p[kP0] = c.p0;
+  p[kBTilde] = c.b_tilde;
+  p[kQ] = spot.q;
   return p;
 }
 
@@ -49,8 +73,10 @@ inline constexpr std::size_t kRingTableMinRows = 4000;
 // build early (model::RingTableBuildStopped).
 inline std::shared_ptr<const model::RingIntegralTable> ring_table_for(
     ModelKind kind, const model::PressureLaw<double>& law, double n, bool n_slope,
-    std::function<bool()> stop = {}) {
-  if (kind != ModelKind::Exact || law.kind == model::PressureKind::Ring) return nullptr;
+    std::function<bool()> stop = {}, const model::ContactSpot& spot = {}) {
+  if (kind != ModelKind::Exact || law.kind == model::PressureKind::Ring ||
+      spot.kind != model::SpotKind::Circle)
+    return nullptr;
   model::PressureLaw<double> at = law;
   if (at.kind == model::PressureKind::Power) at.n = n;
   return std::make_shared<const model::RingIntegralTable>(at, n_slope, std::move(stop));
@@ -58,9 +84,9 @@ inline std::shared_ptr<const model::RingIntegralTable> ring_table_for(
 
 // The same for one pass over `rows` rows: nullptr where the radial quadrature is cheaper.
 inline std::shared_ptr<const model::RingIntegralTable> ring_table_for_rows(
-    ModelKind kind, const model::PressureLaw<double>& law, double n, bool n_slope,
-    std::size_t rows) {
-  return rows >= kRingTableMinRows ? ring_table_for(kind, law, n, n_slope) : nullptr;
+    ModelKind kind, const model::PressureLaw<double>& law, double n, bool n_slope, std::size_t rows,
+    const model::ContactSpot& spot = {}) {
+  return rows >= kRingTableMinRows ? ring_table_for(kind, law, n, n_slope, {}, spot) : nullptr;
 }
 
 // Evaluates one variant for a fixed parameter vector; construct once, call per row.
@@ -70,11 +96,21 @@ class ModelEvaluator {
   // table: the law's ring integrals tabulated (exact variant only; see ring_table_for). With a
   // free exponent n and autodiff T it must carry the n-slopes.
   // rule: the radial quadrature without a table (default the exact model's own).
+  // spot: the contact spot; anything but the circle needs the exact variant.
   ModelEvaluator(ModelKind kind, const model::PressureLaw<double>& law, const T* params,
                  std::shared_ptr<const model::RingIntegralTable> table = nullptr,
-                 const std::vector<model::QuadratureNode>* rule = nullptr)
+                 const std::vector<model::QuadratureNode>* rule = nullptr,
+                 const model::ContactSpot& spot = {})
       : kind_(kind) {
-    if (kind_ == ModelKind::Exact) {
+    if (spot.kind != model::SpotKind::Circle) {
+      if (kind_ != ModelKind::Exact)
+        throw std::invalid_argument(std::string("the ") + model_name(kind_) +
+                                    " approximant knows the circular spot only: a non-circular "
+                                    "contact needs the exact model");
+      spot_ = std::make_unique<model::SpotModel<T>>(
+          model::SpotParams<T>{params[kF], params[kKappa], params[kH], params[kHy], params[kQ]},
+          promote(law, params), spot);
+    } else if (kind_ == ModelKind::Exact) {
       exact_ = std::make_unique<model::ExactModel<T>>(exact_params(params), promote(law, params),
                                                       std::move(table), rule);
     } else {
@@ -99,7 +135,7 @@ class ModelEvaluator {
         return model::approximant_resultants(model::ApproximantForm::Corrected, approx_, products_,
                                              shape_, k);
       case ModelKind::Exact:
-        return (*exact_)(k);
+        return spot_ ? (*spot_)(k) : (*exact_)(k);
     }
     throw std::logic_error("unknown model kind");
   }
@@ -112,10 +148,16 @@ class ModelEvaluator {
     out.n = law.kind == model::PressureKind::Power ? params[kN] : T(law.n);
     return out;
   }
-  static model::FrictionParams<T> exact_params(const T* p) { return {p[kF], p[kKappa], p[kH]}; }
+  // The tilt across the rolling direction is read only when it is in play (a value or a
+  // derivative), so that a circle without it takes exactly the path it always took.
+  static model::FrictionParams<T> exact_params(const T* p) {
+    const bool tilt_y = model::value_of(p[kHy]) != 0.0 || model::detail::has_derivative(p[kHy]);
+    return {p[kF], p[kKappa], p[kH], p[kHy], tilt_y};
+  }
 
   ModelKind kind_;
-  std::unique_ptr<model::ExactModel<T>> exact_;  // only for the exact variant
+  std::unique_ptr<model::ExactModel<T>> exact_;  // the exact variant on the circle
+  std::unique_ptr<model::SpotModel<T>> spot_;    // the exact variant on any other spot
   model::ApproximantShape<double> shape_{};
   model::ApproximantParams<T> approx_{};
   model::ApproximantProducts<T> products_{};

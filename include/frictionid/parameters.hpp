@@ -9,17 +9,20 @@
 #include <string_view>
 #include <vector>
 
+#include <frictionid/model/contact_spot.hpp>
 #include <frictionid/model/pressure_law.hpp>
 
 namespace frictionid {
 
 enum class ModelKind { Seed, Corrected, Exact };
 
-enum ParamIndex : int { kF = 0, kKappa, kH, kA, kB, kM, kN, kP0, kBTilde, kParamCount };
+// h_y and q (docs/physics.md §9): the pressure's tilt across the rolling direction and the aspect
+// of an elliptic or rectangular spot.
+enum ParamIndex : int { kF = 0, kKappa, kH, kA, kB, kM, kN, kP0, kBTilde, kHy, kQ, kParamCount };
 
 inline const std::array<const char*, kParamCount>& param_names() {
-  static const std::array<const char*, kParamCount> names = {"f", "kappa", "h",  "a",      "b",
-                                                             "m", "n",     "p0", "b_tilde"};
+  static const std::array<const char*, kParamCount> names = {
+      "f", "kappa", "h", "a", "b", "m", "n", "p0", "b_tilde", "h_y", "q"};
   return names;
 }
 
@@ -48,16 +51,25 @@ inline std::optional<ModelKind> parse_model_kind(const std::string& s) {
   return std::nullopt;
 }
 
-// The parameters a variant reads, in report order. n appears for exact only with power:N.
-inline std::vector<int> model_parameters(ModelKind kind, model::PressureKind law) {
+// The parameters a variant reads, in report order. n appears for exact only with power:N; h_y
+// for exact on any spot but the circle, or on the circle when the tilt across the rolling
+// direction is asked for (tilt_y: the data has an M_tilt column); q for an ellipse or a
+// rectangle. The approximants know the circle and the tilt along x only.
+inline std::vector<int> model_parameters(ModelKind kind, model::PressureKind law,
+                                         model::SpotKind spot = model::SpotKind::Circle,
+                                         bool tilt_y = false) {
   switch (kind) {
     case ModelKind::Seed:
       return {kF, kKappa, kH, kA, kB, kM};
     case ModelKind::Corrected:
       return {kF, kKappa, kH, kA, kBTilde, kM, kP0};
-    case ModelKind::Exact:
-      if (law == model::PressureKind::Power) return {kF, kKappa, kH, kN};
-      return {kF, kKappa, kH};
+    case ModelKind::Exact: {
+      std::vector<int> p = {kF, kKappa, kH};
+      if (spot != model::SpotKind::Circle || tilt_y) p.push_back(kHy);
+      if (law == model::PressureKind::Power && spot != model::SpotKind::Map) p.push_back(kN);
+      if (spot == model::SpotKind::Ellipse || spot == model::SpotKind::Rect) p.push_back(kQ);
+      return p;
+    }
   }
   return {};
 }

@@ -27,10 +27,12 @@ struct NoiseSpec {
   bool write_sigma = false;  // store the noise sigma in sigma_* columns
 };
 
-// Rows in a fixed, interleaved order; channels T_x, T_y, M_z, M_roll all present.
+// Rows in a fixed, interleaved order; channels T_x, T_y, M_z, M_roll all present, and M_tilt
+// when the spot is not a circle or h_y is not 0 (a circle's file stays as it always was).
 Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
                          const std::array<double, kParamCount>& params,
-                         const SyntheticDesign& design, const NoiseSpec& noise, std::uint64_t seed);
+                         const SyntheticDesign& design, const NoiseSpec& noise, std::uint64_t seed,
+                         const model::ContactSpot& contact = {});
 
 // Standard normal deviates, platform-independent (Marsaglia polar method on mt19937_64).
 class NormalStream {

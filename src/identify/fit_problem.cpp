@@ -36,6 +36,12 @@ std::vector<Channel> fitted_channels(const Dataset& data, const FitSettings& s,
   std::vector<Channel> out;
   for (Channel c : kAllChannels) {
     if (std::find(requested.begin(), requested.end(), c) == requested.end()) continue;
+    if (c == Channel::M_tilt && s.model != ModelKind::Exact && data.has_channel(c)) {
+      warnings.push_back(std::string("channel M_tilt is not fitted: the ") + model_name(s.model) +
+                         " approximant has no tilt across the rolling direction (--model exact "
+                         "has)");
+      continue;
+    }
     if (!data.has_channel(c)) {
       warnings.push_back(std::string("channel ") + channel_name(c) +
                          " was requested but no row measures it; it is not fitted");
@@ -122,7 +128,7 @@ LocalProblem make_fit_problem(const Dataset& data, const FitSettings& s, FitResu
   lp.rows.begin = 0;
   lp.rows.end = data.rows();
   lp.settings = &s;
-  lp.used = model_parameters(s.model, s.law.kind);
+  lp.used = s.used_parameters();
   for (int i : lp.used)
     if (!s.params[i].fixed) lp.free.push_back(i);
   lp.threads = resolve_thread_count(s.threads);
@@ -152,10 +158,10 @@ std::string first_nonfinite_row(const LocalProblem& p, const ParamVector& x) {
   const Dataset& d = *p.rows.data;
   const FitSettings& s = *p.settings;
   const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(p, x, false),
-                                     p.quadrature);
+                                     p.quadrature, s.contact);
   for (std::size_t i = p.rows.begin; i < p.rows.end; ++i) {
     const auto r = model({d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]});
-    const double pred[kChannelCount] = {r.T_x, r.T_y, r.M_z, r.M_roll};
+    const double pred[kChannelCount] = {r.T_x, r.T_y, r.M_z, r.M_roll, r.M_tilt};
     for (Channel c : p.rows.channels) {
       const int ci = static_cast<int>(c);
       const double w = p.rows.inverse_sigma(c, i);

@@ -39,9 +39,31 @@ std::string parameter_problem(const char* name, const ParameterSetting& p) {
   return {};
 }
 
+std::string contact_problem(const FitSettings& s) {
+  const model::ContactSpot& c = s.contact;
+  if (c.kind == model::SpotKind::Circle) {
+    if (!s.params[kQ].fixed)
+      return "q is the aspect of an ellipse or a rectangle: the circle has none to fit";
+    return {};
+  }
+  if (s.model != ModelKind::Exact)
+    return std::string("the ") + model_name(s.model) +
+           " approximant knows the circular spot only: a non-circular contact needs --model exact";
+  if (c.kind == model::SpotKind::Map) {
+    if (!c.map) return "the contact is a pressure map but holds none";
+    if (!s.params[kQ].fixed)
+      return "q is the aspect of an ellipse or a rectangle: a map has none to fit";
+    return {};
+  }
+  if (!(std::isfinite(c.q) && c.q > 0.0))
+    return "the spot's aspect q must be a finite number > 0, not " + number_text(c.q, 6);
+  return {};
+}
+
 std::string settings_problem(const FitSettings& s) {
   if (auto w = law_problem(s.law); !w.empty()) return w;
-  for (int i : model_parameters(s.model, s.law.kind))
+  if (auto w = contact_problem(s); !w.empty()) return w;
+  for (int i : s.used_parameters())
     if (auto w = parameter_problem(param_names()[i], s.params[i]); !w.empty()) return w;
   for (std::size_t a = 0; a < s.channels.size(); ++a)
     for (std::size_t b = a + 1; b < s.channels.size(); ++b)
@@ -121,17 +143,32 @@ std::array<ParameterSetting, kParamCount> default_parameter_settings(
   s[kN] = {d[kN], 0.0, 8.0, false, false};
   s[kP0] = {d[kP0], 1e-3, 0.5, false, true};
   s[kBTilde] = {d[kBTilde], 1.0, 1e4, false, true};
+  // The tilt across the rolling direction: like h, held at 0 unless the spot or the data asks.
+  s[kHy] = {0.0, -1.0, 1.0, true, false};
+  // The aspect of an ellipse or a rectangle: fixed unless freed (docs/physics.md §9.1).
+  s[kQ] = {1.0, 0.05, 4.0, true, true};
   return s;
 }
 
 FitSettings FitSettings::defaults(ModelKind model, model::PressureLaw<double> law,
-                                  std::string label) {
+                                  std::string label, model::ContactSpot contact) {
   FitSettings s;
   s.model = model;
   s.params = default_parameter_settings(law);
+  if (contact.kind != model::SpotKind::Circle) {
+    const auto d = default_parameters(law, contact, 0.8, 1.0, 0.0);
+    for (int i : {kA, kB, kM, kP0, kBTilde}) s.params[i].initial = d[i];
+    s.params[kHy].fixed = false;
+    s.params[kQ].initial = contact.q;
+  }
   s.law = std::move(law);
   s.law_label = std::move(label);
+  s.contact = std::move(contact);
   return s;
+}
+
+std::vector<int> FitSettings::used_parameters(bool tilt_y) const {
+  return model_parameters(model, law.kind, contact.kind, tilt_y || !params[kHy].fixed);
 }
 
 ParameterSetting& FitSettings::parameter(std::string_view name) {

@@ -80,7 +80,8 @@ void add_sandwich_errors(const LocalProblem& lp, const ParamVector& x,
 void add_predictions(const LocalProblem& lp, const ParamVector& x, FitResult& res) {
   const FitSettings& s = *lp.settings;
   const Dataset& data = *lp.rows.data;
-  const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(lp, x, false));
+  const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(lp, x, false), nullptr,
+                                     s.contact);
   res.eps.resize(data.rows());
   for (auto& f : res.fitted) f.assign(data.rows(), 0.0);
   for_each_chunk(chunk_count(data.rows()), lp.threads, [&](std::size_t chunk) {
@@ -89,7 +90,7 @@ void add_predictions(const LocalProblem& lp, const ParamVector& x, FitResult& re
       const model::Kinematics kin{data.v_x[i], data.v_y[i], data.omega[i], data.N[i], data.R[i]};
       res.eps[i] = model::slip_geometry(kin).eps;
       const auto pr = model(kin);
-      const double pred[kChannelCount] = {pr.T_x, pr.T_y, pr.M_z, pr.M_roll};
+      const double pred[kChannelCount] = {pr.T_x, pr.T_y, pr.M_z, pr.M_roll, pr.M_tilt};
       for (int c = 0; c < kChannelCount; ++c) res.fitted[c][i] = pred[c];
     }
   });

@@ -17,6 +17,7 @@
 #include "identify/noise_reweighting.hpp"
 #include "identify/number_text.hpp"
 #include "identify/profile_intervals.hpp"
+#include "identify/spot_cache.hpp"
 
 namespace frictionid {
 namespace {
@@ -64,6 +65,13 @@ FittedRun fit_keeping_problem(const FitSettings& settings, const Dataset& data,
     } catch (const model::RingTableBuildStopped&) {
       throw FitError("interrupted");
     }
+  }
+
+  // A non-circular spot with its aspect and pressure shape fixed: integrate every row once.
+  if (auto cache = spot_cache_for_rows(data, s, lp.threads, [observer] {
+        return observer != nullptr && observer->cancelled();
+      })) {
+    run.settings->contact.cache = std::move(cache);
   }
 
   res.noise_model = noise_model_name(s.noise_model);

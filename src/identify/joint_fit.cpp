@@ -113,7 +113,7 @@ class CancelOnlyObserver : public FitObserver {
 }  // namespace
 
 void check_shared_parameters(const FitSettings& s, const std::vector<std::string>& shared) {
-  const std::vector<int> used = model_parameters(s.model, s.law.kind);
+  const std::vector<int> used = s.used_parameters();
   for (int i : shared_indices(shared)) {
     if (std::find(used.begin(), used.end(), i) == used.end())
       throw std::invalid_argument(std::string(param_names()[i]) +

@@ -43,7 +43,7 @@ double sum_of_squares(const LocalProblem& p, const ParamVector& x,
                       const PacketRowCache* cache = nullptr) {
   const FitSettings& s = *p.settings;
   const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(p, x, false),
-                                     p.quadrature);
+                                     p.quadrature, s.contact);
   const ChunkKernels<0>& kernels = chunk_kernels_for<0>();
   const PacketArgs<0> pp = kernels.packet_args(s, x.data());
   const std::size_t chunks = problem_chunks(p);
@@ -96,8 +96,8 @@ struct JetPasses {
                    const Reduce& reduce) {
     const FitSettings& s = *p.settings;
     const auto pj = seeded(p, x);
-    const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true),
-                                    p.quadrature);
+    const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true), p.quadrature,
+                                    s.contact);
     const PacketArgs<N> pp = chunk_kernels_for<N>().packet_args(s, pj.data());
     const std::size_t chunks = problem_chunks(p);
     sum_sq.assign(chunks, 0.0);
@@ -116,8 +116,8 @@ struct JetPasses {
   static bool normal_equations(const LocalProblem& p, const ParamVector& x, NormalEquations& ne) {
     const FitSettings& s = *p.settings;
     const auto pj = seeded(p, x);
-    const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true),
-                                    p.quadrature);
+    const ModelEvaluator<Jet> model(s.model, s.law, pj.data(), pass_table(p, x, true), p.quadrature,
+                                    s.contact);
     const std::size_t chunks = problem_chunks(p);
     std::vector<Gram> gram(chunks);
     std::vector<char> good(chunks, 1);

@@ -33,6 +33,7 @@ double collapse_factor(const Dataset& d, Channel c, std::size_t i) {
     case Channel::M_z:
       return sw / (d.N[i] * d.R[i]);
     case Channel::M_roll:
+    case Channel::M_tilt:
       return 1.0 / (d.N[i] * d.R[i]);
   }
   return 1.0;

@@ -20,7 +20,8 @@ std::array<std::vector<double>, kChannelCount> predictions(const LocalProblem& l
                                                            const ParamVector& x) {
   const FitSettings& s = *lp.settings;
   const Dataset& d = *lp.rows.data;
-  const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(lp, x, false));
+  const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(lp, x, false), nullptr,
+                                     s.contact);
   std::array<std::vector<double>, kChannelCount> out;
   for (auto& v : out) v.resize(d.rows());
   for_each_chunk(chunk_count(d.rows()), lp.threads, [&](std::size_t c) {
@@ -31,6 +32,7 @@ std::array<std::vector<double>, kChannelCount> predictions(const LocalProblem& l
       out[1][i] = r.T_y;
       out[2][i] = r.M_z;
       out[3][i] = r.M_roll;
+      out[4][i] = r.M_tilt;
     }
   });
   return out;

@@ -93,10 +93,11 @@ bool row_residuals(const ResidualRows& rows, const ModelEvaluator<T>& model, Los
   for (std::size_t j = 0; j < nc; ++j) {
     const Channel c = rows.channels[j];
     const int ci = static_cast<int>(c);
-    const T& pred = c == Channel::T_x   ? r.T_x
-                    : c == Channel::T_y ? r.T_y
-                    : c == Channel::M_z ? r.M_z
-                                        : r.M_roll;
+    const T& pred = c == Channel::T_x      ? r.T_x
+                    : c == Channel::T_y    ? r.T_y
+                    : c == Channel::M_z    ? r.M_z
+                    : c == Channel::M_roll ? r.M_roll
+                                           : r.M_tilt;
     // Unmeasured (weight 0): the residual is held at 0, whatever the missing value holds.
     row_out[j] = d.present[ci][i] ? (pred - d.value[ci][i]) * w[j] : T(0);
     if (loss != LossKind::None) s += row_out[j] * row_out[j];

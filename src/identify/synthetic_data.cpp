@@ -40,15 +40,18 @@ double NormalStream::next() {
 
 Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
                          const std::array<double, kParamCount>& params,
-                         const SyntheticDesign& design, const NoiseSpec& noise,
-                         std::uint64_t seed) {
+                         const SyntheticDesign& design, const NoiseSpec& noise, std::uint64_t seed,
+                         const model::ContactSpot& contact) {
   if (design.rows == 0) throw std::invalid_argument("the design has no rows");
   if (!(design.eps_min > 0.0) || !(design.eps_max >= design.eps_min))
     throw std::invalid_argument("the eps range must satisfy 0 < eps_min <= eps_max");
   if (design.loads.empty() || design.slip_angles.empty())
     throw std::invalid_argument("the design needs at least one load and one slip angle");
   const ModelEvaluator<double> model(
-      kind, law, params.data(), ring_table_for_rows(kind, law, params[kN], false, design.rows));
+      kind, law, params.data(),
+      ring_table_for_rows(kind, law, params[kN], false, design.rows, contact), nullptr, contact);
+  const int channels =
+      contact.kind != model::SpotKind::Circle || params[kHy] != 0.0 ? kChannelCount : 4;
   NormalStream normal(seed);
   Dataset d;
   d.source = "generated";
@@ -74,8 +77,8 @@ Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
     d.omega.push_back(k.omega);
     d.N.push_back(k.N);
     d.R.push_back(k.R);
-    const double clean[kChannelCount] = {r.T_x, r.T_y, r.M_z, r.M_roll};
-    for (int c = 0; c < kChannelCount; ++c) {
+    const double clean[kChannelCount] = {r.T_x, r.T_y, r.M_z, r.M_roll, r.M_tilt};
+    for (int c = 0; c < channels; ++c) {
       const double sd = std::hypot(noise.relative * clean[c], noise.absolute);
       const double z = normal.next();
       d.value[c].push_back(clean[c] + sd * z);

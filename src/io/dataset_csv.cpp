@@ -41,18 +41,20 @@ enum Slot : int {
   kTy,
   kMz,
   kMroll,
+  kMtilt,
   kSigmaTx,
   kSigmaTy,
   kSigmaMz,
   kSigmaMroll,
+  kSigmaMtilt,
   kSlotCount
 };
 constexpr int kFirstChannel = kTx;
 constexpr int kFirstSigma = kSigmaTx;
 
 constexpr const char* kCanonical[kSlotCount] = {
-    "v_x", "v_y",    "omega",     "N",         "R",         "T_x",         "T_y",
-    "M_z", "M_roll", "sigma_T_x", "sigma_T_y", "sigma_M_z", "sigma_M_roll"};
+    "v_x",    "v_y",    "omega",     "N",         "R",         "T_x",          "T_y",         "M_z",
+    "M_roll", "M_tilt", "sigma_T_x", "sigma_T_y", "sigma_M_z", "sigma_M_roll", "sigma_M_tilt"};
 constexpr const char* kMeaning[kSlotCount] = {"slip velocity along the rolling axis [m/s]",
                                               "lateral slip velocity [m/s]",
                                               "spin [rad/s]",
@@ -62,12 +64,15 @@ constexpr const char* kMeaning[kSlotCount] = {"slip velocity along the rolling a
                                               "measured T_y [N]",
                                               "measured M_z [N m]",
                                               "measured M_roll [N m]",
+                                              "measured M_tilt [N m]",
                                               "standard deviation of T_x [N], > 0",
                                               "standard deviation of T_y [N], > 0",
                                               "standard deviation of M_z [N m], > 0",
-                                              "standard deviation of M_roll [N m], > 0"};
-constexpr bool kRequiredColumn[kSlotCount] = {true,  false, true,  true,  true,  false, false,
-                                              false, false, false, false, false, false};
+                                              "standard deviation of M_roll [N m], > 0",
+                                              "standard deviation of M_tilt [N m], > 0"};
+constexpr bool kRequiredColumn[kSlotCount] = {true,  false, true,  true,  true,
+                                              false, false, false, false, false,
+                                              false, false, false, false, false};
 
 using QuotePolicy = io::double_quote_escape<',', '"'>;
 using TrimPolicy = io::trim_chars<' ', '\t'>;

@@ -96,9 +96,12 @@ TEST(Sandwich, Hc3StandardErrorsMatchADirectComputation) {
     std::vector<double> r;
     for (std::size_t i = 0; i < d.rows(); ++i) {
       const auto p = model({d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]});
-      const double pred[kChannelCount] = {p.T_x, p.T_y, p.M_z, p.M_roll};
-      for (int c = 0; c < kChannelCount; ++c)
-        r.push_back((pred[c] - d.value[c][i]) / d.sigma[c][i]);
+      const double pred[kChannelCount] = {p.T_x, p.T_y, p.M_z, p.M_roll, p.M_tilt};
+      for (Channel c : kAllChannels) {
+        if (!d.has_channel(c)) continue;  // a circle's file has no M_tilt
+        const int ci = static_cast<int>(c);
+        r.push_back((pred[ci] - d.value[ci][i]) / d.sigma[ci][i]);
+      }
     }
     return r;
   };

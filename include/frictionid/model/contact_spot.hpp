@@ -50,18 +50,23 @@ struct PressureMap {
   }
 };
 
+class SpotIntegralCache;  // spot_integral_cache.hpp
+
 struct ContactSpot {
   SpotKind kind = SpotKind::Circle;
   // Aspect of an ellipse (semi-axes R along x, qR along y) or a rectangle (|x| <= R,
   // |y| <= qR): the value a model uses unless the fit frees q. 1 for the circle and the map.
   double q = 1.0;
   std::shared_ptr<const PressureMap> map;  // only for SpotKind::Map
+  // The integrals of a fit's rows, computed once (spot_integral_cache.hpp); a model uses them
+  // when its q and exponent are the ones they were computed for.
+  std::shared_ptr<const SpotIntegralCache> cache;
 
   static ContactSpot circle() { return {}; }
-  static ContactSpot ellipse(double q) { return {SpotKind::Ellipse, q, nullptr}; }
-  static ContactSpot rect(double q) { return {SpotKind::Rect, q, nullptr}; }
+  static ContactSpot ellipse(double q) { return {SpotKind::Ellipse, q, nullptr, nullptr}; }
+  static ContactSpot rect(double q) { return {SpotKind::Rect, q, nullptr, nullptr}; }
   static ContactSpot pressure_map(std::shared_ptr<const PressureMap> m) {
-    return {SpotKind::Map, 1.0, std::move(m)};
+    return {SpotKind::Map, 1.0, std::move(m), nullptr};
   }
   // Whether the aspect q is a property of the spot that a fit can identify.
   bool has_aspect() const { return kind == SpotKind::Ellipse || kind == SpotKind::Rect; }

@@ -225,6 +225,21 @@ class SpotIntegrator {
         break;
       }
     }
+    // The physical direction (cos phi, q sin phi)/len turns fastest about the reference axis
+    // that the spot's long axis squeezes: phi = +-pi/2 for q < 1, 0 and pi for q > 1, where
+    // its branch points sit atanh(min(q, 1/q)) off the real line. Cut there, and grade the
+    // neighbouring pieces to that scale when it is small.
+    const double axis = q_ < 1.0 ? 0.5 * M_PI : 0.0;
+    const double scale = std::atanh(std::min(q_, 1.0 / q_));
+    for (double a : {axis, axis + M_PI}) {
+      marks.push_back(a);
+      if (scale < 0.35)
+        for (double k : {0.25, 1.0, 4.0}) {
+          if (k * scale > 0.5 * M_PI) continue;
+          marks.push_back(a - k * scale);
+          marks.push_back(a + k * scale);
+        }
+    }
     if (full) {
       lo = marks.front();
       hi = lo + 2 * M_PI;
@@ -286,6 +301,9 @@ class SpotIntegrator {
     const double r_in = std::max(0.0, r_back);
     ray.cuts.clear();
     ray.cuts.push_back(r_in);
+    // The ray's closest approach to the centre, where rho(r) turns: a law with a slope at
+    // rho = 0 (a cone) has a kink there.
+    if (-b > r_in && -b < r_out) ray.cuts.push_back(-b);
     for (double B : breaks_) {
       const double disc_b = (B - d) * (B + d);
       if (!(disc_b > 0.0)) continue;

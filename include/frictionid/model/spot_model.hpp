@@ -18,6 +18,7 @@
 #include <frictionid/model/kinematics.hpp>
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/model/scalar_ops.hpp>
+#include <frictionid/model/spot_integral_cache.hpp>
 #include <frictionid/model/spot_integrals.hpp>
 
 namespace frictionid::model {
@@ -105,6 +106,10 @@ class SpotModel {
       n_step_ = hi.n - lo.n;
     }
     moments_ = spot_moments(spot_, law_moments(law_), q_);
+    const auto& c = spot_.cache;
+    if (c && !q_plus_ && !n_plus_ && c->q() == value_of(q_) &&
+        (law_.kind != PressureKind::Power || c->n() == value_of(law_.n)))
+      cache_ = c.get();
   }
 
   Resultants<T> operator()(const Kinematics& k) const {
@@ -130,7 +135,7 @@ class SpotModel {
       r.M_z = p_.f * (p_.kappa * uy * r.M_roll - ux * r.M_tilt);
       return r;
     }
-    const double cx = -k.v_y / (k.omega * k.R), cy = k.v_x / (k.omega * k.R);
+    const auto [cx, cy] = rotation_centre(k.v_x, k.v_y, k.omega, k.R);
     const SpotIntegralsT<T> I = integrals(cx, cy);
     const double s = k.omega > 0.0 ? 1.0 : -1.0;
     const T force = p_.f * scale * s, torque = force * k.R;
@@ -143,7 +148,8 @@ class SpotModel {
 
   // The integrals for the centre of rotation at (cx, cy) (units of R), with q- and n-slopes.
   SpotIntegralsT<T> integrals(double cx, double cy) const {
-    const SpotIntegrals v = (*integrator_)(cx, cy);
+    const SpotIntegrals* cached = cache_ ? cache_->find(cx, cy) : nullptr;
+    const SpotIntegrals v = cached ? *cached : (*integrator_)(cx, cy);
     SpotIntegrals dq, dn;
     if (q_plus_) dq = ((*q_plus_)(cx, cy) - (*q_minus_)(cx, cy)) * (1.0 / (2.0 * q_step_));
     if (n_plus_) dn = ((*n_plus_)(cx, cy) - (*n_minus_)(cx, cy)) * (1.0 / n_step_);
@@ -175,6 +181,7 @@ class SpotModel {
   SpotMoments<T> moments_{};
   std::unique_ptr<ExactModel<T>> circle_;
   std::unique_ptr<SpotIntegrator> integrator_, q_minus_, q_plus_, n_minus_, n_plus_;
+  const SpotIntegralCache* cache_ = nullptr;  // the fit's rows, when q and n are the cache's
   double q_step_ = 0.0, n_step_ = 0.0;
 };
 

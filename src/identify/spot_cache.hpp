@@ -1,0 +1,22 @@
+// The spot integrals of a fit's rows, computed once before the search (model/spot_integral_cache
+// .hpp): the exact model on a non-circular spot integrates ~60 us per row, and a fit evaluates
+// every row dozens of times with the same aspect and pressure shape.
+#pragma once
+
+#include <functional>
+#include <memory>
+
+#include <frictionid/dataset.hpp>
+#include <frictionid/fit_settings.hpp>
+#include <frictionid/model/spot_integral_cache.hpp>
+
+namespace frictionid {
+
+// The integrals of every spinning row at the settings' q and exponent n (their initial values),
+// or nullptr when nothing can be cached: the circle, another model, or q or n free (their
+// integrals change at every step). Spread over `threads`; `stop` is asked between chunks and a
+// true answer ends the build with FitError("interrupted").
+std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(
+    const Dataset& data, const FitSettings& s, int threads, const std::function<bool()>& stop);
+
+}  // namespace frictionid

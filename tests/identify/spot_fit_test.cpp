@@ -1,0 +1,111 @@
+// Identification on non-circular contact spots (docs/physics.md §9.7): noise-free data generated
+// by the exact model on an ellipse or a rectangle is refitted to its parameters.
+#include <frictionid/fitter.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <frictionid/synthetic_data.hpp>
+#include "identify/spot_cache.hpp"
+#include "support/matched_digits.hpp"
+
+namespace frictionid {
+namespace {
+
+using Law = model::PressureLaw<double>;
+using frictionid::test::matched_digits;
+
+// A small design with lateral slip, so that the tilt across the rolling direction shows.
+SyntheticDesign small_design() {
+  SyntheticDesign d;
+  d.rows = 96;
+  d.eps_min = 0.05;
+  d.eps_max = 20.0;
+  d.slip_angles = {0.0, 0.6, -1.1};
+  return d;
+}
+
+std::array<double, kParamCount> truth_on(const Law& law, const model::ContactSpot& spot) {
+  auto p = default_parameters(law, spot, 0.85, 1.3, 0.12);
+  p[kHy] = -0.2;
+  return p;
+}
+
+void expect_digits(const FitResult& r, const std::array<double, kParamCount>& truth,
+                   double digits) {
+  for (const auto& p : r.parameters) {
+    const int i = *param_index(p.name);
+    EXPECT_GE(matched_digits(p.value, truth[i]), digits) << p.name << " = " << p.value;
+  }
+}
+
+TEST(SpotFit, NoiseFreeEllipseDataRecoversFrictionAndBothTiltsToEightDigits) {
+  const auto spot = model::ContactSpot::ellipse(0.7);
+  const auto truth = truth_on(Law::hertz(), spot);
+  const Dataset d =
+      generate_dataset(ModelKind::Exact, Law::hertz(), truth, small_design(), NoiseSpec{}, 3, spot);
+  ASSERT_TRUE(d.has_channel(Channel::M_tilt));
+  const FitResult r =
+      Fitter(FitSettings::defaults(ModelKind::Exact, Law::hertz(), "hertz", spot)).fit(d);
+  ASSERT_TRUE(r.solver.converged);
+  bool saw_h_y = false;
+  for (const auto& p : r.parameters) saw_h_y |= p.name == std::string("h_y");
+  EXPECT_TRUE(saw_h_y);
+  expect_digits(r, truth, 8.0);
+}
+
+TEST(SpotFit, NoiseFreeRectangleDataWithAFreeAspectRecoversTheAspectToEightDigits) {
+  const auto spot = model::ContactSpot::rect(0.6);
+  const auto truth = truth_on(Law::parabolic(), spot);
+  const Dataset d = generate_dataset(ModelKind::Exact, Law::parabolic(), truth, small_design(),
+                                     NoiseSpec{}, 4, spot);
+  // The aspect starts 20 % off; the local stage alone, from near the truth.
+  FitSettings s = FitSettings::defaults(ModelKind::Exact, Law::parabolic(), "parabolic",
+                                        model::ContactSpot::rect(0.72));
+  s.params[kQ].fixed = false;
+  s.global = false;
+  s.start("f", 0.8).start("kappa", 1.2).start("h", 0.1).start("h_y", -0.1);
+  const FitResult r = Fitter(s).fit(d);
+  ASSERT_TRUE(r.solver.converged);
+  auto expected = truth;
+  expected[kQ] = 0.6;
+  expect_digits(r, expected, 8.0);
+}
+
+TEST(SpotFit, TheRowCacheHoldsEverySpinningRowAndNothingWhenTheAspectIsFree) {
+  const auto spot = model::ContactSpot::ellipse(0.5);
+  const Dataset d =
+      generate_dataset(ModelKind::Exact, Law::uniform(), truth_on(Law::uniform(), spot),
+                       small_design(), NoiseSpec{}, 5, spot);
+  FitSettings s = FitSettings::defaults(ModelKind::Exact, Law::uniform(), "uniform", spot);
+  const auto cache = spot_cache_for_rows(d, s, 2, {});
+  ASSERT_TRUE(cache);
+  EXPECT_EQ(cache->size(), d.rows());  // every row spins, and no two share a centre of rotation
+  // A cached lookup is the integral itself.
+  const model::SpotIntegrator integrate(spot, Law::uniform(), 0.5);
+  const auto [cx, cy] = model::rotation_centre(d.v_x[7], d.v_y[7], d.omega[7], d.R[7]);
+  ASSERT_NE(cache->find(cx, cy), nullptr);
+  EXPECT_EQ(cache->find(cx, cy)->ex[0], integrate(cx, cy).ex[0]);
+  s.params[kQ].fixed = false;
+  EXPECT_FALSE(spot_cache_for_rows(d, s, 2, {}));
+}
+
+TEST(SpotFit, ApproximantsRefuseANonCircularSpot) {
+  FitSettings s = FitSettings::defaults(ModelKind::Seed, Law::hertz(), "hertz",
+                                        model::ContactSpot::ellipse(0.7));
+  std::string why;
+  EXPECT_FALSE(s.validate(&why));
+  EXPECT_NE(why.find("--model exact"), std::string::npos) << why;
+}
+
+TEST(SpotFit, TheCircleRefusesAFreeAspect) {
+  FitSettings s = FitSettings::defaults(ModelKind::Exact, Law::hertz(), "hertz");
+  s.params[kQ].fixed = false;
+  std::string why;
+  EXPECT_FALSE(s.validate(&why));
+  EXPECT_NE(why.find("q"), std::string::npos) << why;
+}
+
+}  // namespace
+}  // namespace frictionid
