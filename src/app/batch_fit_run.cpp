@@ -49,7 +49,7 @@ SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer
   auto covariates = dataset_covariates(data);
   covariates.insert(covariates.end(), run.covariates.begin(), run.covariates.end());
   try {
-    FitSettings s = fit_settings(run.options, run.options.model);
+    FitSettings s = fit_settings(run.options, run.options.model, data);
     s.threads = threads;
     std::optional<FitResult> warm_fit;
     if (warm) warm_fit = fit_warm(s, *warm, data, observer);

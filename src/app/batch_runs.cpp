@@ -208,6 +208,7 @@ std::vector<BatchEntry> manifest_entries(const std::string& manifest, const FitR
   for (const auto& name : header)
     if (name != "path" && name != "label") check_covariate_name(name, manifest);
   const int pressure_col = column("pressure"), fix_col = column("fix");
+  const int contact_col = column("contact");
   const int channels_col = column("channels");
   const fs::path base = fs::path(manifest).parent_path();
   std::vector<BatchEntry> out;
@@ -233,7 +234,11 @@ std::vector<BatchEntry> manifest_entries(const std::string& manifest, const FitR
     e.path = p.lexically_normal().string();
     e.label = label_col >= 0 && !cells[label_col].empty() ? cells[label_col] : stem_of(rel);
     e.options = o;
-    if (pressure_col >= 0 && !cells[pressure_col].empty()) e.options.pressure = cells[pressure_col];
+    if (pressure_col >= 0 && !cells[pressure_col].empty()) {
+      e.options.pressure = cells[pressure_col];
+      e.options.pressure_given = true;
+    }
+    if (contact_col >= 0 && !cells[contact_col].empty()) e.options.contact = cells[contact_col];
     try {
       if (fix_col >= 0 && !cells[fix_col].empty())
         e.options.fix = parse_assignments("--fix", cells[fix_col]);
@@ -285,8 +290,12 @@ std::vector<std::string> column_text(const Dataset& d, const std::string& name,
   throw InputError(path, 1, 0, "--group-by: no column '" + name + "' (columns: " + known + ")");
 }
 
+// The options, and the bytes of the request's own files (a pressure map): a changed map refits
+// the run.
 std::string options_text(const FitRequest& o) {
-  return fit_request_json(o).dump();
+  std::string text = fit_request_json(o).dump();
+  for (const auto& path : request_input_files(o)) text += '\x1d' + fingerprint_file(path).sha256;
+  return text;
 }
 
 // A label as a directory name: characters outside [A-Za-z0-9._+=-] become '_', and a leading

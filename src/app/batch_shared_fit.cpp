@@ -81,7 +81,8 @@ void write_shared_fit(const std::vector<BatchRun>& runs, const std::vector<Summa
     data.push_back(
         std::make_unique<Dataset>(run.file_data ? select_rows(*run.file_data, run.group_rows)
                                                 : load_dataset_csv(run.path, run.options.columns)));
-    inputs.push_back({run.label, data.back().get(), fit_settings(run.options, run.options.model)});
+    inputs.push_back(
+        {run.label, data.back().get(), fit_settings(run.options, run.options.model, *data.back())});
     index.push_back(i);
   }
   if (inputs.empty()) throw FitError("--shared: no run was fitted, so there is no joint fit");

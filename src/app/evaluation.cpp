@@ -21,13 +21,14 @@ nlohmann::ordered_json evaluate_point(const EvalRequest& r) {
     if (!std::isfinite(x)) throw InputError("--vx, --vy and --omega must be finite");
   if (!(k.N > 0.0) || !std::isfinite(k.N)) throw InputError("--N must be a finite number > 0");
   if (!(k.R > 0.0) || !std::isfinite(k.R)) throw InputError("--R must be a finite number > 0");
-  const ModelEvaluator<double> eval(s.kind, s.law, s.params.data());
+  const ModelEvaluator<double> eval(s.kind, s.law, s.params.data(), nullptr, nullptr, s.contact);
   const auto out = eval(k);
   nlohmann::ordered_json j;
   j["T_x"] = out.T_x;
   j["T_y"] = out.T_y;
   j["M_z"] = out.M_z;
   j["M_roll"] = out.M_roll;
+  if (shows_tilt(s)) j["M_tilt"] = out.M_tilt;
   j["N"] = out.N;
   return j;
 }
@@ -40,12 +41,17 @@ std::size_t evaluate_file(const EvalRequest& r) {
   const Dataset d = load_dataset_csv(r.input, r.columns, false);
   const ModelEvaluator<double> eval(
       s.kind, s.law, s.params.data(),
-      ring_table_for_rows(s.kind, s.law, s.params[kN], false, d.rows()));
+      ring_table_for_rows(s.kind, s.law, s.params[kN], false, d.rows(), s.contact), nullptr,
+      s.contact);
+  const bool tilt = shows_tilt(s);
   std::string text = dataset_csv_text(d);
   const std::size_t header_end = text.find('\n');
   std::string header = text.substr(0, header_end);
   for (const auto& name : d.extra_names) header += "," + csv_cell(name);
-  for (const char* name : {"T_x", "T_y", "M_z", "M_roll", "N"}) {
+  std::vector<const char*> predicted = {"T_x", "T_y", "M_z", "M_roll"};
+  if (tilt) predicted.push_back("M_tilt");
+  predicted.push_back("N");
+  for (const char* name : predicted) {
     const bool taken =
         (name == std::string("N")) ||
         ("," + header + ",").find("," + std::string(name) + ",") != std::string::npos;
@@ -59,8 +65,10 @@ std::size_t evaluate_file(const EvalRequest& r) {
     pos = eol + 1;
     for (const auto& column : d.extra_values) (out += ',') += csv_cell(column[i]);
     const auto p = eval(model::Kinematics{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]});
-    fmt::format_to(std::back_inserter(out), ",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", p.T_x,
-                   p.T_y, p.M_z, p.M_roll, p.N);
+    fmt::format_to(std::back_inserter(out), ",{:.17g},{:.17g},{:.17g},{:.17g}", p.T_x, p.T_y, p.M_z,
+                   p.M_roll);
+    if (tilt) fmt::format_to(std::back_inserter(out), ",{:.17g}", p.M_tilt);
+    fmt::format_to(std::back_inserter(out), ",{:.17g}\n", p.N);
   }
   write_file_atomically(r.output, out);
   return d.rows();
@@ -77,16 +85,19 @@ ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& 
                                      i, x, c >= 3 ? " > 0" : ""));
     }
   ResultantColumns out;
-  for (auto* column : {&out.T_x, &out.T_y, &out.M_z, &out.M_roll, &out.N}) column->resize(k.rows);
+  for (auto* column : {&out.T_x, &out.T_y, &out.M_z, &out.M_roll, &out.M_tilt, &out.N})
+    column->resize(k.rows);
   const ModelEvaluator<double> eval(
       s.kind, s.law, s.params.data(),
-      ring_table_for_rows(s.kind, s.law, s.params[kN], false, k.rows));
+      ring_table_for_rows(s.kind, s.law, s.params[kN], false, k.rows, s.contact), nullptr,
+      s.contact);
   for (std::size_t i = 0; i < k.rows; ++i) {
     const auto p = eval(model::Kinematics{k.v_x[i], k.v_y[i], k.omega[i], k.N[i], k.R[i]});
     out.T_x[i] = p.T_x;
     out.T_y[i] = p.T_y;
     out.M_z[i] = p.M_z;
     out.M_roll[i] = p.M_roll;
+    out.M_tilt[i] = p.M_tilt;
     out.N[i] = p.N;
   }
   return out;

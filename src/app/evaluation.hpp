@@ -13,12 +13,14 @@
 
 namespace frictionid::app {
 
-// {T_x, T_y, M_z, M_roll, N} at r's point (vx and omega required, vy default 0).
+// {T_x, T_y, M_z, M_roll, N} at r's point (vx and omega required, vy default 0), and M_tilt
+// after M_roll when the model shows it (shows_tilt: a spot other than the circle, or h_y != 0).
 nlohmann::ordered_json evaluate_point(const EvalRequest& r);
 
 // Every row of r.input (dataset columns; channels optional) written to r.output: the row as read,
 // the file's other columns, then the predictions T_x,T_y,M_z,M_roll,N (suffixed _model where the
-// input already has such a column). Returns the rows written.
+// input already has such a column), with M_tilt after M_roll when the model shows it. Returns the
+// rows written.
 std::size_t evaluate_file(const EvalRequest& r);
 
 // Kinematics columns of one length: v_x, v_y, omega finite; N and R finite and > 0.
@@ -32,7 +34,7 @@ struct KinematicsColumns {
 };
 
 struct ResultantColumns {
-  std::vector<double> T_x, T_y, M_z, M_roll, N;
+  std::vector<double> T_x, T_y, M_z, M_roll, M_tilt, N;
 };
 
 // Throws InputError naming the column and the index of the first bad value.

@@ -10,6 +10,8 @@
 #include <frictionid/fitter.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/pressure_law_reader.hpp>
+#include <frictionid/io/pressure_map_reader.hpp>
+#include "app/model_setup.hpp"
 #include "app/option_parsers.hpp"
 #include "identify/fitted_run.hpp"
 
@@ -92,17 +94,47 @@ FitSettings fit_settings(const FitRequest& o, const std::string& model, bool len
   if (o.global_subsample < 1) throw InputError("--global-subsample must be at least 1");
   const auto kind = parse_model_kind(model);
   if (!kind) throw InputError("--model '" + model + "': expected seed, corrected or exact");
+  const model::ContactSpot contact = checked_contact(o.contact, o.pressure_given, *kind);
+  const std::string contact_label = contact_spot_label(contact);
   const auto law = parse_pressure_option(o.pressure);
-  FitSettings s = FitSettings::defaults(*kind, law, pressure_law_label(law, o.pressure));
-  const auto used = model_parameters(s.model, s.law.kind);
+  FitSettings s =
+      FitSettings::defaults(*kind, law, law_label_for(law, o.pressure, contact), contact);
+  // Every parameter the model can read on this spot: h_y is one of the exact model's on the
+  // circle too, fitted when the data measure M_tilt or --free asks for it.
+  const auto used = model_parameters(s.model, s.law.kind, contact.kind, /*tilt_y=*/true);
+  for (const auto& name : o.free)
+    if (name == "q" && !contact.has_aspect())
+      throw InputError("--free q: q is the aspect of --contact ellipse:Q or rect:Q; the " +
+                       contact_label + " has none to fit");
+  check_names("--free", o.free);
   std::vector<bool> start_given(s.params.size(), false), bounds_given(s.params.size(), false);
   check_values("--param", o.start);
   check_bounds("--bounds", o.bounds);
   check_values("--fix", o.fix);
   check_names("--channels", o.channels);
+  if (o.fix.count("q"))
+    throw InputError(
+        "--fix q=...: q is the aspect of the contact spot; give it as --contact "
+        "ellipse:Q or rect:Q");
+  for (const auto& [name, v] : o.fix)
+    if (std::find(o.free.begin(), o.free.end(), name) != o.free.end())
+      throw InputError("--free " + name + " and --fix " + name +
+                       "=...: a parameter is either fitted or held; drop one of the two");
+  for (const auto& name : o.free) {
+    const int i = model_param_index("--free", name, used, model, lenient);
+    if (i >= 0) s.params[i].fixed = false;
+  }
   for (const auto& [name, v] : o.start) {
     const int i = model_param_index("--param", name, used, model, lenient);
     if (i < 0) continue;
+    // A parameter held by default (h_y, q) is started only where it is fitted: h_y on the
+    // circle may still be freed by the data (fit_settings with the dataset applies it then).
+    if (s.params[i].fixed && (i == kHy || i == kQ)) {
+      if (i == kQ)
+        throw InputError("--param q=...: q is held at the spot's aspect (--contact " +
+                         contact_label + "); add --free q to fit it from --param's value");
+      continue;
+    }
     s.params[i].initial = v;
     start_given[i] = true;
   }
@@ -130,6 +162,8 @@ FitSettings fit_settings(const FitRequest& o, const std::string& model, bool len
     if (s.params[i].fixed && s.params[i].log_scale && !(s.params[i].initial > 0.0))
       throw InputError(std::string("--fix: ") + param_names()[i] + " must be > 0");
   check_option_semantics(o, s, used, start_given, bounds_given);
+  check_tilt(o.fix.count("h") || o.fix.count("h_y") ? "--fix" : "--param", s.contact, contact_label,
+             s.params[kQ].initial, s.params[kH].initial, s.params[kHy].initial);
   for (const auto& name : o.channels) {
     bool found = false;
     for (Channel c : kAllChannels)
@@ -139,7 +173,7 @@ FitSettings fit_settings(const FitRequest& o, const std::string& model, bool len
       }
     if (!found)
       throw InputError("--channels: unknown channel '" + name +
-                       "' (expected T_x, T_y, M_z, M_roll)");
+                       "' (expected T_x, T_y, M_z, M_roll, M_tilt)");
   }
   s.loss = parse_loss(o.loss, s.loss_scale);
   s.noise_model = parse_noise_model(o.noise_model);
@@ -172,6 +206,36 @@ FitSettings fit_settings(const FitRequest& o, const std::string& model, bool len
   s.threads = o.threads;
 
   return s;
+}
+
+FitSettings fit_settings(const FitRequest& o, const std::string& model, const Dataset& data,
+                         bool lenient) {
+  FitSettings s = fit_settings(o, model, lenient);
+  ParameterSetting& h_y = s.params[kHy];
+  // A circle's fit takes the tilt across the rolling direction in when the data measure it.
+  if (s.model == ModelKind::Exact && data.has_channel(Channel::M_tilt) && !o.fix.count("h_y"))
+    h_y.fixed = false;
+  if (const auto start = o.start.find("h_y"); start != o.start.end()) {
+    if (h_y.fixed) {
+      if (lenient) return s;
+      throw InputError(
+          "--param h_y=...: h_y is held at 0 here (a circle whose data have no "
+          "M_tilt column); add --free h_y to fit it from --param's value");
+    }
+    h_y.initial = start->second;
+    if (!(h_y.initial >= h_y.lower && h_y.initial <= h_y.upper))
+      throw InputError("--param h_y=" + g(h_y.initial) + " lies outside h_y's bounds [" +
+                       g(h_y.lower) + ", " + g(h_y.upper) +
+                       "]; the fit cannot start there: change --param or widen --bounds");
+    check_tilt("--param", s.contact, contact_spot_label(s.contact), s.params[kQ].initial,
+               s.params[kH].initial, h_y.initial);
+  }
+  return s;
+}
+
+std::vector<std::string> request_input_files(const FitRequest& r) {
+  if (r.contact.rfind("map:", 0) == 0 && r.contact.size() > 4) return {r.contact.substr(4)};
+  return {};
 }
 
 FitResult fit_dataset(const FitSettings& s, const Dataset& data, FitObserver* observer) {

@@ -21,7 +21,19 @@ inline constexpr unsigned long long kMaxFitSeed = 4'294'967'295ULL;
 // Throws InputError on bad values, naming the option (e.g. "--fix"). lenient: fixed, bounded or
 // started parameters that the model does not use are ignored (compare applies one request to
 // several models) instead of rejected.
+// The spot (r.contact) is checked as for eval (app::checked_contact); h_y is held at 0 on the
+// circle and fitted on any other spot, q held at the spot's Q, unless --fix or --free (r.free)
+// say otherwise; a fixed or starting tilt must keep the pressure >= 0 on the spot.
 FitSettings fit_settings(const FitRequest& r, const std::string& model, bool lenient = false);
+
+// The settings for fitting `data`: fit_settings, and h_y fitted on the circle too when the data
+// measure M_tilt (unless --fix holds it). What a fit runs with; fit_settings alone checks a
+// request before its data are read.
+FitSettings fit_settings(const FitRequest& r, const std::string& model, const Dataset& data,
+                         bool lenient = false);
+
+// The request's files besides its data whose bytes a report fingerprints: a pressure map.
+std::vector<std::string> request_input_files(const FitRequest& r);
 
 // Fits `data` with `s`; a dataset the fit rejects (std::invalid_argument) becomes an InputError
 // naming the data's source, as for a file the reader rejects. FitError passes through.

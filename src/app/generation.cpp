@@ -45,7 +45,9 @@ GeneratedData generate(const GenerateRequest& r) {
   }
   d.negative_slip = !r.forward_only;
   const NoiseSpec noise{r.noise, r.noise_abs, r.sigma_columns};
-  g.data = generate_dataset(g.setup.kind, g.setup.law, g.setup.params, d, noise, r.seed);
+  // An M_tilt column only where the model shows it (shows_tilt): a circle's file stays as it was.
+  g.data = generate_dataset(g.setup.kind, g.setup.law, g.setup.params, d, noise, r.seed,
+                            g.setup.contact);
   g.data.source = r.output;
   return g;
 }

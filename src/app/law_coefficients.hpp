@@ -9,8 +9,11 @@
 namespace frictionid::app {
 
 // {pressure, kappa, alpha, m0..m3, a, b, m, b_tilde, p0, mu_M, M_roll_per_hNR, consistency}.
-// Throws InputError for a bad law, a kappa that is not finite and > 0, or one so small that the
-// coefficients overflow.
+// On a contact spot other than the circle (r.contact) the spot's own slope-matched coefficients
+// for slip along x: {pressure, contact, kappa, alpha, a, b, m, b_tilde, p0, mu_M,
+// M_roll_per_hNR} (the circle's moments and bounds do not apply there).
+// Throws InputError for a bad law or spot, a kappa that is not finite and > 0, or one so small
+// that the coefficients overflow.
 nlohmann::ordered_json law_coefficients(const CoefficientsRequest& r);
 
 }  // namespace frictionid::app

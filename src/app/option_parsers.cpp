@@ -227,6 +227,11 @@ model::ContactSpot parse_contact_option(const std::string& spec) {
   throw InputError(option, 0, 0, "unknown contact spot " + quoted(spec) + "; " + kExpected);
 }
 
+std::string contact_label(const std::string& spec) {
+  if (spec.rfind("map:", 0) == 0) return spec;
+  return contact_spot_label(parse_contact_option(spec));
+}
+
 std::vector<std::string> parse_contact_list(const std::string& option, const std::string& spec) {
   static const char* const kExpected = "SPOT[,SPOT...], e.g. circle,ellipse:0.7";
   std::vector<std::string> result;

@@ -37,6 +37,10 @@ model::PressureLaw<double> parse_pressure_option(const std::string& spec);
 // map file's errors keep naming the file, line and column.
 model::ContactSpot parse_contact_option(const std::string& spec);
 
+// The spot as reports name it (contact_spot_label of io/pressure_map_reader.hpp): "ellipse:.70"
+// -> "ellipse:0.7", "map:FILE" as given, without reading the map's file again.
+std::string contact_label(const std::string& spec);
+
 // "circle,ellipse:0.7" -> {"circle", "ellipse:0.7"}, each checked by parse_contact_option
 // (compare's list of spots; a map's file name cannot hold a comma there).
 std::vector<std::string> parse_contact_list(const std::string& option, const std::string& spec);

@@ -3,6 +3,7 @@
 
 #include <exception>
 
+#include "app/fit_request.hpp"
 #include "app/request_json.hpp"
 
 namespace frictionid::app {
@@ -11,7 +12,9 @@ Provenance report_provenance(const FitRequest& r, const std::vector<std::string>
   Provenance p;
   p.command_line = r.command_line;
   p.options = fit_request_json(r);
-  for (const auto& path : inputs) {
+  std::vector<std::string> files = inputs;
+  for (const auto& path : request_input_files(r)) files.push_back(path);  // a pressure map
+  for (const auto& path : files) {
     try {
       p.inputs.push_back(input_file(path));
     } catch (const std::exception&) {

@@ -5,30 +5,36 @@ namespace frictionid::app {
 nlohmann::ordered_json fit_request_json(const FitRequest& r) {
   nlohmann::ordered_json bounds = nlohmann::ordered_json::object();
   for (const auto& [name, lohi] : r.bounds) bounds[name] = {lohi.first, lohi.second};
-  return {{"model", r.model},
-          {"pressure", r.pressure},
-          {"fix", r.fix},
-          {"bounds", bounds},
-          {"start", r.start},
-          {"loss", r.loss},
-          {"channels", r.channels},
-          {"columns", r.columns.canonical_to_header},
-          {"noise_model", r.noise_model},
-          {"intervals", r.intervals},
-          {"bootstrap", r.bootstrap},
-          {"starts", r.starts},
-          {"seed", r.seed},
-          {"global_evaluations", r.global_evaluations},
-          {"global_subsample", r.global_subsample},
-          {"no_global", r.no_global},
-          {"global_algorithm", r.global_algorithm}};
+  nlohmann::ordered_json j = {{"model", r.model}, {"pressure", r.pressure}};
+  // The spot and the freed parameters only when they are not the defaults: a circle's options
+  // (in every report's provenance and every journal key) stay what they were before spots.
+  if (r.contact != "circle") j["contact"] = r.contact;
+  j["fix"] = r.fix;
+  if (!r.free.empty()) j["free"] = r.free;
+  j.update(nlohmann::ordered_json{{"bounds", bounds},
+                                  {"start", r.start},
+                                  {"loss", r.loss},
+                                  {"channels", r.channels},
+                                  {"columns", r.columns.canonical_to_header},
+                                  {"noise_model", r.noise_model},
+                                  {"intervals", r.intervals},
+                                  {"bootstrap", r.bootstrap},
+                                  {"starts", r.starts},
+                                  {"seed", r.seed},
+                                  {"global_evaluations", r.global_evaluations},
+                                  {"global_subsample", r.global_subsample},
+                                  {"no_global", r.no_global},
+                                  {"global_algorithm", r.global_algorithm}});
+  return j;
 }
 
 FitRequest fit_request_from_json(const nlohmann::ordered_json& j) {
   FitRequest r;
   r.model = j.at("model").get<std::string>();
   r.pressure = j.at("pressure").get<std::string>();
+  r.contact = j.value("contact", std::string("circle"));
   r.fix = j.at("fix").get<ParameterValues>();
+  if (j.contains("free")) r.free = j.at("free").get<std::vector<std::string>>();
   for (const auto& [name, lohi] : j.at("bounds").items())
     r.bounds[name] = {lohi.at(0).get<double>(), lohi.at(1).get<double>()};
   r.start = j.at("start").get<ParameterValues>();

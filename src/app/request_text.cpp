@@ -10,6 +10,7 @@ void apply(const FitText& text, FitRequest& r) {
   if (!text.bounds.empty()) r.bounds = parse_bounds("--bounds", text.bounds);
   if (!text.fix.empty()) r.fix = parse_assignments("--fix", text.fix);
   if (!text.channels.empty()) r.channels = parse_name_list("--channels", text.channels);
+  if (!text.free.empty()) r.free = parse_name_list("--free", text.free);
   r.columns = parse_column_map(text.columns);
 }
 

@@ -13,6 +13,7 @@ namespace frictionid::app {
 // The text of the fit options shared by fit, compare and batch.
 struct FitText {
   std::string fix, bounds, start, channels, columns;
+  std::string free;  // --free P[,P]: parameters fitted although held by default (h_y, q)
 };
 void apply(const FitText& text, FitRequest& r);
 

@@ -20,17 +20,24 @@ using ParameterValues = std::map<std::string, double>;
 // Parameter name -> (lower, upper).
 using ParameterBounds = std::map<std::string, std::pair<double, double>>;
 
-// A model with its pressure law and parameter values: unspecified coefficients follow the law.
+// A model with its pressure law, contact spot and parameter values: unspecified coefficients
+// follow the law (and the spot).
 struct ModelRequest {
   std::string model = "exact";
   std::string pressure = "hertz";
   ParameterValues params;
+  // The contact spot: circle, ellipse:Q, rect:Q (0 < Q <= 4) or map:FILE (the map is the
+  // pressure: no --pressure with it).
+  std::string contact = "circle";
+  bool pressure_given = false;  // --pressure was given (an error with map:FILE)
 };
 
 struct CoefficientsRequest {
   std::string pressure = "hertz";
   double kappa = 1.0;
   double alpha = 0.0;  // slip direction [rad] for m(alpha)
+  std::string contact = "circle";
+  bool pressure_given = false;
 };
 
 struct EvalRequest {
@@ -60,7 +67,10 @@ struct FitRequest {
   std::string data;  // the dataset CSV (fit, compare); batch plans its own
   std::string model = "seed";
   std::string pressure = "hertz";
+  bool pressure_given = false;        // --pressure was given (an error with map:FILE)
+  std::string contact = "circle";     // circle, ellipse:Q, rect:Q or map:FILE
   ParameterValues fix;                // held at these values
+  std::vector<std::string> free;      // fitted although held by default (h_y, q)
   ParameterBounds bounds;             // replace the default bounds
   ParameterValues start;              // where the local fit starts (with no_global)
   std::string loss = "none";          // none, huber:S, cauchy:S or soft_l1:S
@@ -88,8 +98,11 @@ struct FitRequest {
 };
 
 struct CompareRequest {
-  FitRequest fit;  // everything but the model, applied to every model where it applies
+  FitRequest fit;  // everything but the model and the spot, applied to every model where it applies
   std::vector<std::string> models = {"seed", "corrected", "exact"};
+  // Every model is fitted on each of these spots, models first ("exact" on "circle" and
+  // "ellipse:0.7"); a spot that a model does not support is an error, as for fit.
+  std::vector<std::string> contacts = {"circle"};
 };
 
 struct BatchRequest {

@@ -59,8 +59,11 @@ nlohmann::ordered_json eps_fixed_point(const Friction& friction, const ModelSetu
   nlohmann::ordered_json fixed = nullptr;
   const double final_alpha = sim.slip_angle_final;
   const bool on_axis = std::fabs(std::sin(2.0 * final_alpha)) < 1e-6;
-  if (s.params[kH] == 0.0 && (s.params[kKappa] == 1.0 || on_axis) && r.omega0 != 0.0 &&
-      r.v0 != 0.0) {
+  // An ellipse or a rectangle keeps the direction only along its axes (a circle with an
+  // isotropic law any direction); a pressure map need not be symmetric.
+  const bool circle = s.contact.kind == model::SpotKind::Circle;
+  if (s.params[kH] == 0.0 && s.params[kHy] == 0.0 && s.contact.kind != model::SpotKind::Map &&
+      ((s.params[kKappa] == 1.0 && circle) || on_axis) && r.omega0 != 0.0 && r.v0 != 0.0) {
     double best = HUGE_VAL;
     for (const auto& root : model::eps_fixed_points(friction, body, final_alpha)) {
       if (!root.stable) continue;
@@ -98,10 +101,12 @@ SimulationOutcome simulate(const SimulateRequest& r) {
 
   // A tabulated law is integrated piece by piece between its samples: thousands of steps of the
   // integrator pay for its ring-integral table at once.
-  const ModelEvaluator<double> eval(s.kind, s.law, s.params.data(),
-                                    s.law.kind == model::PressureKind::Table
-                                        ? ring_table_for(s.kind, s.law, s.params[kN], false)
-                                        : nullptr);
+  const ModelEvaluator<double> eval(
+      s.kind, s.law, s.params.data(),
+      s.law.kind == model::PressureKind::Table
+          ? ring_table_for(s.kind, s.law, s.params[kN], false, {}, s.contact)
+          : nullptr,
+      nullptr, s.contact);
   const auto friction = [&eval](const model::Kinematics& k) { return eval(k); };
   const auto start = std::chrono::steady_clock::now();
   SimulationOutcome out;

@@ -24,6 +24,7 @@
 #include "app/batch_shared_fit.hpp"
 #include "app/batch_warm_start.hpp"
 #include "app/fit_request.hpp"
+#include "app/option_parsers.hpp"
 #include "app/report_provenance.hpp"
 #include "app/request_json.hpp"
 #include "app/requests.hpp"
@@ -58,6 +59,8 @@ Provenance run_provenance(const BatchRequest& o, const BatchRun& run) {
   p.command_line = o.fit.command_line;
   p.options = fit_request_json(run.options);
   p.inputs.push_back(InputFile{run.path, run.input.size, run.input.sha256});
+  // A pressure map, fingerprinted as the report is written.
+  for (const auto& file : report_provenance(run.options, {}).inputs) p.inputs.push_back(file);
   return p;
 }
 
@@ -68,11 +71,13 @@ void write_run_report(const BatchContext& c, const BatchRun& run, const FitResul
     ReportOptions options;  // as many threads as each run fits on
     options.threads = c.fit_threads;
     options.provenance = run_provenance(c.options, run);
+    options.contact = contact_label(run.options.contact);
     write_report(dir.string(), r, data, options);
   } else if (c.options.per_run_reports == "json") {
     fs::create_directories(dir);
-    const auto json = report_json(r, run_provenance(c.options, run))
-                          .dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+    const auto json =
+        report_json(r, run_provenance(c.options, run), contact_label(run.options.contact))
+            .dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
     // Durable with the journal's next sync (batch_journal.hpp), not one flush per run.
     write_file_atomically((dir / "report.json").string(), json + "\n", Flush::Later);
   }

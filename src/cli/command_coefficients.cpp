@@ -17,6 +17,20 @@ int run_coefficients(const app::CoefficientsRequest& r, const std::string& forma
     return kExitOk;
   }
   const auto v = [&j](const char* key) { return j[key].get<double>(); };
+  if (j.contains("contact")) {
+    // A spot other than the circle: its slope-matched coefficients, without the circle's bounds.
+    std::printf("contact spot   %s, pressure %s   (kappa = %.6g, slip along x)\n",
+                text::for_terminal(j["contact"].get<std::string>()).c_str(),
+                text::for_terminal(j["pressure"].get<std::string>()).c_str(), r.kappa);
+    std::printf("a       %-16.10g small-v slope of T_par\n", v("a"));
+    std::printf("b       %-16.10g small-u slope of seed T_perp\n", v("b"));
+    std::printf("m       %-16.10g small-u slope of M_z\n", v("m"));
+    std::printf("b_tilde %-16.10g corrected T_perp slope\n", v("b_tilde"));
+    std::printf("p0      %-16.10g pure-spin T_perp / (h kappa f N)\n", v("p0"));
+    std::printf("mu_M    %-16.10g M0 / (f N R) at kappa = 1\n", v("mu_M"));
+    std::printf("M_roll  %-16.10g M_roll / (h N R)\n", v("M_roll_per_hNR"));
+    return kExitOk;
+  }
   const auto& ok = j["consistency"];
   const auto holds = [&ok](const char* key) { return ok[key].get<bool>(); };
   std::printf("pressure law   %s   (kappa = %.6g, alpha = %.6g rad)\n",

@@ -1,4 +1,5 @@
 // frictionid compare: fit several model variants to the same rows, report them side by side.
+#include <algorithm>
 #include <cstdio>
 
 #include <frictionid/fit_error.hpp>
@@ -7,6 +8,7 @@
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/model_comparison.hpp>
 #include "app/fit_request.hpp"
+#include "app/option_parsers.hpp"
 #include "app/report_provenance.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
@@ -20,11 +22,30 @@
 namespace frictionid::cli {
 
 int run_compare(const app::CompareRequest& o) {
-  std::vector<FitSettings> settings;
+  // Every model on each spot, models first: exact on circle and ellipse:0.7 side by side.
+  std::vector<app::FitRequest> variants;
+  std::vector<std::string> variant_names, contacts;
   for (const auto& name : o.models) {
     if (!parse_model_kind(name))
       throw InputError("--models: unknown model '" + name + "' (expected seed, corrected, exact)");
-    settings.push_back(app::fit_settings(o.fit, name, /*lenient=*/true));
+    for (const auto& contact : o.contacts) {
+      app::FitRequest v = o.fit;
+      v.model = name;
+      v.contact = contact;
+      (void)app::fit_settings(v, name, /*lenient=*/true);  // before any file is read
+      const std::string label = contact_label(contact);
+      const std::string variant = label == "circle" ? name : name + "@" + label;
+      const std::string directory = compare_variant_directory(variant);
+      for (const auto& other : variant_names)
+        if (compare_variant_directory(other) == directory)
+          throw InputError("--contact", 0, 0,
+                           "'" + other + "' and '" + variant +
+                               "' would share the report directory " + directory +
+                               "; give each spot once");
+      variants.push_back(std::move(v));
+      variant_names.push_back(variant);
+      contacts.push_back(label);
+    }
   }
   if (o.fit.report.empty()) throw InputError("compare needs --report DIR");
   const std::atomic<bool>* interrupted = install_interrupt_handler();
@@ -36,6 +57,8 @@ int run_compare(const app::CompareRequest& o) {
                                  say_waiting_for(o.fit.report));
   check_report_directory_replaceable(o.fit.report);
   const Dataset data = load_dataset_csv(o.fit.data, o.fit.columns);
+  std::vector<FitSettings> settings;
+  for (const auto& v : variants) settings.push_back(app::fit_settings(v, v.model, data, true));
   ModelComparison c;
   try {
     TerminalObserver observer(interrupted, show_progress(o.fit.progress));
@@ -47,15 +70,25 @@ int run_compare(const app::CompareRequest& o) {
   } catch (const std::invalid_argument& e) {
     throw InputError(o.fit.data, 0, 0, e.what());
   }
-  Provenance provenance = app::report_provenance(o.fit, {o.fit.data});
+  const bool on_circle_only = o.contacts == std::vector<std::string>{"circle"};
+  std::vector<std::string> inputs = {o.fit.data};
+  for (const auto& v : variants)
+    for (const auto& file : app::request_input_files(v))
+      if (std::find(inputs.begin(), inputs.end(), file) == inputs.end()) inputs.push_back(file);
+  Provenance provenance = app::report_provenance(o.fit, inputs);
   provenance.options["models"] = o.models;
-  const auto files = write_compare_report(o.fit.report, c, data, provenance);
+  if (!on_circle_only) provenance.options["contacts"] = o.contacts;
+  const std::vector<std::string> fit_contacts =
+      on_circle_only ? std::vector<std::string>{} : contacts;
+  const auto files = write_compare_report(o.fit.report, c, data, provenance, fit_contacts);
+  const ModelComparison named = compare_named_variants(c, fit_contacts);
   std::printf("%-10s %14s %14s %10s\n", "model", "chi2", "AIC", "dAIC");
-  for (std::size_t k = 0; k < c.fits.size(); ++k)
-    std::printf("%-10s %14.6g %14.6g %10.4g\n", c.fits[k].model.c_str(), c.fits[k].chi2,
-                c.fits[k].aic, c.delta_aic[k]);
-  std::printf("preferred by AIC: %s, by BIC: %s\n", c.preferred_by_aic.c_str(),
-              c.preferred_by_bic.c_str());
+  for (std::size_t k = 0; k < named.fits.size(); ++k)
+    std::printf("%-10s %14.6g %14.6g %10.4g\n", text::for_terminal(named.fits[k].model).c_str(),
+                named.fits[k].chi2, named.fits[k].aic, named.delta_aic[k]);
+  std::printf("preferred by AIC: %s, by BIC: %s\n",
+              text::for_terminal(named.preferred_by_aic).c_str(),
+              text::for_terminal(named.preferred_by_bic).c_str());
   for (const auto& n : coefficient_notes(c))
     std::printf("note: %s\n", text::for_terminal(n).c_str());
   std::printf("report: %s/compare.md (%zu files)\n", text::for_terminal(o.fit.report).c_str(),

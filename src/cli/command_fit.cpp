@@ -9,6 +9,7 @@
 #include <frictionid/fit_error.hpp>
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
+#include <frictionid/io/pressure_map_reader.hpp>
 #include <frictionid/io/report_writer.hpp>
 #include "app/fit_request.hpp"
 #include "app/report_provenance.hpp"
@@ -25,7 +26,7 @@ namespace frictionid::cli {
 
 int run_fit(const app::FitRequest& o) {
   using seconds = std::chrono::duration<double>;
-  const FitSettings s = app::fit_settings(o, o.model);
+  (void)app::fit_settings(o, o.model);  // bad options fail before the data are read
   if (o.report.empty()) throw InputError("fit needs --report DIR");
   const std::atomic<bool>* interrupted = install_interrupt_handler();
   // Reading, fitting and plotting share --threads (identify/thread_budget.hpp).
@@ -37,7 +38,9 @@ int run_fit(const app::FitRequest& o) {
   const auto t_read = std::chrono::steady_clock::now();
   const Dataset data = load_dataset_csv(o.data, o.columns);
   const double read_s = seconds(std::chrono::steady_clock::now() - t_read).count();
+  const FitSettings s = app::fit_settings(o, o.model, data);
   ReportOptions report_options;
+  report_options.contact = contact_spot_label(s.contact);
   report_options.plot_x = o.plot_x;
   report_options.color_by = o.color_by;
   report_options.threads = o.threads;
@@ -71,8 +74,12 @@ int run_fit(const app::FitRequest& o) {
   const auto files = write_report(o.report, r, data, report_options);
   const double write_s = seconds(std::chrono::steady_clock::now() - t_write).count();
 
-  std::printf("model %s, pressure %s, %zu rows, channels", r.model.c_str(),
-              text::for_terminal(r.pressure).c_str(), r.rows);
+  std::printf("model %s, pressure %s, %s%zu rows, channels", r.model.c_str(),
+              text::for_terminal(r.pressure).c_str(),
+              report_options.contact == "circle"
+                  ? ""
+                  : ("contact " + text::for_terminal(report_options.contact) + ", ").c_str(),
+              r.rows);
   for (Channel c : r.channels) std::printf(" %s", channel_name(c));
   std::printf("\n");
   for (const auto& p : r.parameters) {

@@ -27,6 +27,7 @@ namespace {
 using namespace frictionid::cli;
 using namespace frictionid::app;
 using frictionid::parse_column_map;
+using frictionid::parse_contact_list;
 using frictionid::parse_name_list;
 using frictionid::parse_number_list;
 
@@ -38,6 +39,11 @@ const char* const kOutputNote =
 const char* const kLawHelp =
     "pressure law: uniform, hertz, parabolic, power:N (N >= 0), annulus:B (0 <= B < 1), ring, "
     "table:FILE";
+
+const char* const kContactHelp =
+    "contact spot: circle, ellipse:Q or rect:Q (semi-axis or half-width along y = Q R, "
+    "0 < Q <= 4), or map:FILE (a measured pressure map x,y,sigma0 in units of R; it is the "
+    "pressure, so no --pressure with it)";
 
 // Counts and seeds are read by parse_whole_number (cli/option_parsers.hpp), not by CLI11, which
 // would wrap "-1" into 2^64-1: out-of-range values are rejected before anything is allocated.
@@ -67,6 +73,7 @@ struct Texts {
   std::string generate_params, loads = "2000,4000,6000", slip_angles = "0";
   FitText fit, compare, batch;
   std::string models = "seed,corrected,exact";
+  std::string compare_contacts = "circle";
   std::string group_by, shared;
   std::string simulate_params;
 };
@@ -75,6 +82,9 @@ void add_coefficients(CLI::App& app, CoefficientsRequest& o, std::string& format
   auto* c = app.add_subcommand("coefficients",
                                "Moments of a pressure law and the coefficients a, b, m it implies");
   c->add_option("--pressure", o.pressure, kLawHelp)->capture_default_str();
+  c->add_option("--contact", o.contact,
+                std::string(kContactHelp) + "; its a, b, m, p0, b_tilde by the same slope matching")
+      ->capture_default_str();
   c->add_option("--kappa", o.kappa, "friction anisotropy kappa > 0")->capture_default_str();
   c->add_option("--alpha", o.alpha, "slip direction [rad], for m(alpha)")->capture_default_str();
   c->add_option("--format", format, "json or table")
@@ -86,6 +96,7 @@ void add_eval(CLI::App& app, EvalRequest& o, Texts& t) {
   auto* c = app.add_subcommand("eval", "Evaluate a model at one point or for every row of a CSV");
   c->add_option("--model", o.model.model, "seed, corrected or exact")->capture_default_str();
   c->add_option("--pressure", o.model.pressure, kLawHelp)->capture_default_str();
+  c->add_option("--contact", o.model.contact, kContactHelp)->capture_default_str();
   c->add_option("--param", t.eval_params,
                 "parameters f=..,kappa=..,h=..[,a=..,b=..,m=..,n=..,p0=..,b_tilde=..]; "
                 "omitted coefficients follow the pressure law");
@@ -104,6 +115,7 @@ void add_generate(CLI::App& app, GenerateRequest& o, Texts& t) {
   auto* c = app.add_subcommand("generate", "Make a synthetic dataset from a model, with its truth");
   c->add_option("--model", o.model.model, "seed, corrected or exact")->capture_default_str();
   c->add_option("--pressure", o.model.pressure, kLawHelp)->capture_default_str();
+  c->add_option("--contact", o.model.contact, kContactHelp)->capture_default_str();
   c->add_option("--param", t.generate_params, "true parameters f=..,kappa=..,h=..[,a=..,...]");
   add_whole_number(c, "--rows", o.rows, 1, kMaxGeneratedRows, "number of rows");
   c->add_option("--noise", o.noise, "relative Gaussian noise (fraction of each value)")
@@ -130,6 +142,9 @@ void add_fit_options(CLI::App* c, FitRequest& o, FitText& t, bool with_data = tr
   if (with_data) c->add_option("data", o.data, "dataset CSV")->required();
   c->add_option("--pressure", o.pressure, kLawHelp)->capture_default_str();
   c->add_option("--fix", t.fix, "hold parameters fixed: name=value,...");
+  c->add_option("--free", t.free,
+                "fit parameters held by default: h_y (held at 0 on a circle without an M_tilt "
+                "column), q (the aspect of ellipse:Q or rect:Q, held at Q)");
   c->add_option("--bounds", t.bounds, "parameter bounds: name=lo:hi,...");
   c->add_option("--param", t.start, "initial values (used with --no-global): name=value,...");
   c->add_option("--loss", o.loss, "none, huber:S, cauchy:S or soft_l1:S (per row, S in sigmas)")
@@ -184,6 +199,7 @@ void add_fit(CLI::App& app, FitRequest& o, FitText& t) {
   auto* c =
       app.add_subcommand("fit", "Identify a model's parameters from a CSV and write a report");
   c->add_option("--model", o.model, "seed, corrected or exact")->capture_default_str();
+  c->add_option("--contact", o.contact, kContactHelp)->capture_default_str();
   add_fit_options(c, o, t);
   c->add_option("--plot-x", o.plot_x,
                 "report: also plot every channel against these CSV columns (e.g. slip_angle)")
@@ -197,6 +213,11 @@ void add_compare(CLI::App& app, CompareRequest& o, Texts& t) {
   auto* c = app.add_subcommand(
       "compare", "Fit seed, corrected and exact to the same rows and report them side by side");
   c->add_option("--models", t.models, "models to compare, comma separated")->capture_default_str();
+  c->add_option("--contact", t.compare_contacts,
+                "contact spots, comma separated (e.g. circle,ellipse:0.7): every model is fitted "
+                "on each; " +
+                    std::string(kContactHelp))
+      ->capture_default_str();
   add_fit_options(c, o.fit, t.compare);
 }
 
@@ -209,6 +230,9 @@ void add_batch(CLI::App& app, BatchRequest& o, Texts& t) {
                 "CSV files, globs, directories (their *.csv) or manifest CSVs (a `path` column)")
       ->required();
   c->add_option("--model", o.fit.model, "seed, corrected or exact")->capture_default_str();
+  c->add_option("--contact", o.fit.contact,
+                std::string(kContactHelp) + "; a manifest's contact column replaces it per run")
+      ->capture_default_str();
   add_fit_options(c, o.fit, t.batch, /*with_data=*/false);
   c->add_option("--group-by", t.group_by, "split each CSV into one run per value of COL[,COL]");
   c->add_option("--per-run-reports", o.per_run_reports,
@@ -237,6 +261,7 @@ void add_simulate(CLI::App& app, SimulateRequest& o, Texts& t) {
       "simulate", "Slide and spin a flat body to rest under a model's friction (physics §4)");
   c->add_option("--model", o.model.model, "seed, corrected or exact")->capture_default_str();
   c->add_option("--pressure", o.model.pressure, kLawHelp)->capture_default_str();
+  c->add_option("--contact", o.model.contact, kContactHelp)->capture_default_str();
   c->add_option("--param", t.simulate_params,
                 "friction parameters f=..,kappa=..,h=..[,a=..,...] as eval");
   c->add_option("--inertia-ratio", o.inertia_ratio,
@@ -336,6 +361,18 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) words.emplace_back(argv[i]);
   fit.command_line = compare.fit.command_line = batch.fit.command_line =
       frictionid::text::command_line(words);
+  // A pressure map is the pressure: --pressure with --contact map:FILE is an error, which needs
+  // to know whether --pressure was given at all (its default is hertz).
+  const auto pressure_given = [&app](const char* subcommand) {
+    return app.get_subcommand(subcommand)->count("--pressure") > 0;
+  };
+  coefficients.pressure_given = pressure_given("coefficients");
+  eval.model.pressure_given = pressure_given("eval");
+  generate.model.pressure_given = pressure_given("generate");
+  fit.pressure_given = pressure_given("fit");
+  compare.fit.pressure_given = pressure_given("compare");
+  simulate.model.pressure_given = pressure_given("simulate");
+  batch.fit.pressure_given = pressure_given("batch");
 
   try {
     if (app.got_subcommand("coefficients"))
@@ -357,6 +394,7 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("compare")) {
       compare.models = parse_name_list("--models", texts.models);
+      compare.contacts = parse_contact_list("--contact", texts.compare_contacts);
       apply(texts.compare, compare.fit);
       return run_compare(compare);
     }

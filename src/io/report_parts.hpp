@@ -86,10 +86,6 @@ std::string contact_words(const std::string& contact);
 std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d);
 std::string compare_html_page(const ModelComparison& c, const std::vector<ReportPlot>& plots,
                               const Provenance& p = {});
-// c as the compare pages show it: each fit named as its variant (compare_variant_name of
-// io/compare_report.hpp), and the preferred models by those names.
-ModelComparison compare_named_variants(const ModelComparison& c,
-                                       const std::vector<std::string>& contacts);
 
 // The provenance (io/provenance.hpp) as a Markdown section "## Traceability" with one bullet per
 // line, ending in an empty line.

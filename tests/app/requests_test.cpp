@@ -62,7 +62,7 @@ TEST(FitRequest, TypedValuesGiveTheSettingsOfTheCommandLinesText) {
   parsed.bounds.clear();
   parsed.start.clear();
   parsed.channels.clear();
-  apply(FitText{"kappa=1.25", "f=0.2:1.7,h=-0.3:0.4", "f=0.9,h=0.05", "M_z,T_x", ""}, parsed);
+  apply(FitText{"kappa=1.25", "f=0.2:1.7,h=-0.3:0.4", "f=0.9,h=0.05", "M_z,T_x", "", ""}, parsed);
 
   expect_same_settings(fit_settings(typed, typed.model), fit_settings(parsed, parsed.model));
 }

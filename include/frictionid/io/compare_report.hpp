@@ -40,6 +40,10 @@ std::vector<std::string> write_compare_report(const std::string& dir, const Mode
 // the circle (or contacts is empty).
 std::string compare_variant_name(const ModelComparison& c, const std::vector<std::string>& contacts,
                                  std::size_t k);
+// c as the pages show it: each fit named as its variant (compare_variant_name), and the
+// preferred models by those names.
+ModelComparison compare_named_variants(const ModelComparison& c,
+                                       const std::vector<std::string>& contacts);
 // The directory of that fit's report inside DIR: the name with characters other than letters,
 // digits and ._+=@- replaced by _.
 std::string compare_variant_directory(const std::string& name);
