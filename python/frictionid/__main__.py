@@ -94,8 +94,12 @@ def batch_parser() -> argparse.ArgumentParser:
     p.add_argument("--workers", type=whole_number(1), metavar="N",
                    help="worker processes of the LocalCluster (default: one per core)")
     p.add_argument("--model", default="seed", help="seed, corrected or exact")
-    p.add_argument("--pressure", default="hertz", help="pressure law, as frictionid fit")
+    p.add_argument("--pressure", default=None, help="pressure law, as frictionid fit "
+                                                    "(default hertz)")
+    p.add_argument("--contact", default="circle",
+                   help="contact spot: circle, ellipse:Q, rect:Q or map:FILE, as frictionid fit")
     p.add_argument("--fix", default="", help="hold parameters fixed: name=value,...")
+    p.add_argument("--free", default="", help="fit parameters held by default: h_y, q")
     p.add_argument("--bounds", default="", help="parameter bounds: name=lo:hi,...")
     p.add_argument("--param", default="", help="initial values: name=value,...")
     p.add_argument("--loss", default="none", help="none, huber:S, cauchy:S or soft_l1:S")
@@ -137,12 +141,14 @@ def run_batch(args: argparse.Namespace) -> int:
 
     t_start = time.monotonic()
     o = _frictionid.FitRequest()
-    for name in ("model", "pressure", "loss", "noise_model", "intervals", "bootstrap", "starts",
+    for name in ("model", "contact", "loss", "noise_model", "intervals", "bootstrap", "starts",
                  "seed", "global_evaluations", "global_subsample", "no_global",
                  "global_algorithm", "threads"):
         setattr(o, name, getattr(args, name))
+    o.pressure = "hertz" if args.pressure is None else args.pressure
+    o.pressure_given = args.pressure is not None
     _frictionid.apply_fit_text(o, fix=args.fix, bounds=args.bounds, start=args.param,
-                               channels=args.channels, columns=args.columns)
+                               channels=args.channels, columns=args.columns, free=args.free)
     if os.path.exists(args.output) and not os.path.isdir(args.output):
         raise _frictionid.InputError(f"{args.output}: --output exists and is not a directory")
     lock = _lock_output(args.output, wait=not args.no_wait)

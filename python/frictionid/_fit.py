@@ -16,9 +16,11 @@ MAX_SEED = 2**32 - 1  # as `frictionid fit --seed`: NLopt keeps 32 bits of a see
 def fit(
     data: _data.DataLike,
     model: str = "seed",
-    pressure: str = "hertz",
+    pressure: Optional[str] = None,
     *,
+    contact: str = "circle",
     fix: Optional[Mapping[str, float]] = None,
+    free: Optional[Union[str, Iterable[str]]] = None,
     bounds: Optional[Bounds] = None,
     start: Optional[Mapping[str, float]] = None,
     loss: Union[str, Sequence] = "none",
@@ -50,9 +52,17 @@ def fit(
             and optional ``sigma_<channel>``. Other columns are ignored. For bit-identical
             results with a CSV read by pandas, read it with ``float_precision="round_trip"``.
         model: ``"seed"`` (f, kappa, h, a, b, m), ``"corrected"`` (f, kappa, h, a, b_tilde, m,
-            p0) or ``"exact"`` (f, kappa, h, and n with ``power:N``).
-        pressure: ``uniform``, ``hertz``, ``parabolic``, ``power:N`` or ``table:FILE``.
+            p0) or ``"exact"`` (f, kappa, h, and n with ``power:N``; h_y on a spot other than
+            the circle or with an ``M_tilt`` column; q with ``free=["q"]``).
+        pressure: ``uniform``, ``hertz`` (the default), ``parabolic``, ``power:N`` or
+            ``table:FILE``; not with a pressure map (``contact="map:FILE"``).
+        contact: the contact spot (``--contact``): ``"circle"``, ``"ellipse:Q"`` or
+            ``"rect:Q"`` (extent Q R across the rolling direction, 0 < Q <= 4) or
+            ``"map:FILE"`` (a measured pressure map ``x,y,sigma0``); anything but the circle
+            needs ``model="exact"``.
         fix: parameters held at a value, ``{"kappa": 1.0}`` (``--fix kappa=1``).
+        free: parameters held by default that the fit should fit (``--free``): ``"h_y"``,
+            ``"q"`` (the aspect of an ellipse or a rectangle).
         bounds: parameter bounds, ``{"f": (0.1, 2)}`` (``--bounds f=0.1:2``). One side None
             (or -inf as lower, +inf as upper) keeps the model's default bound on that side:
             ``{"f": (None, 2)}`` lowers only the upper bound. The fit's bounds are always
@@ -98,7 +108,8 @@ def fit(
     have the frame's row labels.
     """
     loaded = _data.load_indexed(data, columns, threads)
-    o = options(model, pressure, fix=fix, bounds=bounds, start=start, loss=loss,
+    o = options(model, pressure, contact=contact, fix=fix, free=free, bounds=bounds,
+                start=start, loss=loss,
                 channels=channels, noise_model=noise_model, intervals=intervals,
                 bootstrap=bootstrap, seed=seed, threads=threads, starts=starts,
                 global_search=global_search, global_algorithm=global_algorithm,
@@ -109,9 +120,11 @@ def fit(
 
 def options(
     model: str = "seed",
-    pressure: str = "hertz",
+    pressure: Optional[str] = None,
     *,
+    contact: str = "circle",
     fix: Optional[Mapping[str, float]] = None,
+    free: Optional[Union[str, Iterable[str]]] = None,
     bounds: Optional[Bounds] = None,
     start: Optional[Mapping[str, float]] = None,
     loss: Union[str, Sequence] = "none",
@@ -132,8 +145,12 @@ def options(
     the command line's code when the fit runs (``request.check()`` checks it at once)."""
     o = _frictionid.FitRequest()
     o.model = model
-    o.pressure = pressure
+    # None: the default law, not given (a pressure map takes no law).
+    o.pressure = "hertz" if pressure is None else pressure
+    o.pressure_given = pressure is not None
+    o.contact = contact
     o.fix = _options.values("--fix", fix)
+    o.free = _options.names(free)
     o.bounds = _options.bounds(bounds, o.default_bounds)
     o.start = _options.values("--param", start)
     o.loss = _options.loss(loss)

@@ -17,27 +17,32 @@ ArrayLike = Any
 
 def evaluate(
     model: str,
-    pressure: str,
+    pressure: Optional[str],
     params: Optional[Mapping[str, float]],
     v_x: ArrayLike,
     v_y: ArrayLike,
     omega: ArrayLike,
     N: ArrayLike,
     R: ArrayLike,
+    *,
+    contact: str = "circle",
 ) -> Dict[str, np.ndarray]:
     """The resultants ``model`` predicts, vectorised (numpy broadcasting over the inputs).
 
     Args:
         model: ``"seed"``, ``"corrected"`` or ``"exact"``.
-        pressure: ``uniform``, ``hertz``, ``parabolic``, ``power:N`` or ``table:FILE``.
+        pressure: ``uniform``, ``hertz``, ``parabolic``, ``power:N`` or ``table:FILE``;
+            None: ``hertz``, and the only choice with a pressure map.
         params: parameter name -> value, e.g. ``{"f": 0.9, "kappa": 1.2, "h": 0.1}``; the
             coefficients a, b, m, b_tilde, p0 not given follow from the pressure law (as
             ``frictionid eval --param``); ``result.params`` of a fit works too.
         v_x, v_y, omega: slip velocity [m/s] and spin [rad/s], finite.
         N, R: normal load [N] and contact radius [m], finite and > 0.
+        contact: the contact spot, as for :func:`fit` (``--contact``).
 
     Returns:
-        ``{"T_x", "T_y", "M_z", "M_roll", "N"}`` -> float64 arrays of the broadcast shape.
+        ``{"T_x", "T_y", "M_z", "M_roll", "N"}`` -> float64 arrays of the broadcast shape, and
+        ``"M_tilt"`` on a spot other than the circle or with ``h_y``.
 
     Raises:
         InputError: (a ``ValueError``) unknown model, law or parameter, or bad values.
@@ -48,32 +53,41 @@ def evaluate(
                                    (v_x, v_y, omega, N, R)))
     shape = arrays[0].shape
     flat = [np.ascontiguousarray(a.reshape(-1)) for a in arrays]
-    out = _frictionid.evaluate(model, pressure, _options.values("--param", params), *flat)
+    out = _frictionid.evaluate(model, "hertz" if pressure is None else pressure,
+                               _options.values("--param", params), *flat, contact=contact,
+                               pressure_given=pressure is not None)
     return {k: v.reshape(shape) for k, v in out.items()}
 
 
-def coefficients(pressure: str = "hertz", kappa: float = 1.0,
-                 alpha: float = 0.0) -> Dict[str, Any]:
+def coefficients(pressure: Optional[str] = None, kappa: float = 1.0,
+                 alpha: float = 0.0, *, contact: str = "circle") -> Dict[str, Any]:
     """The moments m0..m3 of a pressure law and the approximant coefficients they imply
     (docs/physics.md §3), as ``frictionid coefficients`` prints them.
 
     Args:
-        pressure: ``uniform``, ``hertz``, ``parabolic``, ``power:N`` or ``table:FILE``.
+        pressure: ``uniform``, ``hertz`` (None: the default), ``parabolic``, ``power:N`` or
+            ``table:FILE``.
         kappa: anisotropy, > 0.
         alpha: slip direction [rad] for m(alpha).
+        contact: the contact spot, as for :func:`fit`: on a spot other than the circle, its
+            own slope-matched a, b, m, b_tilde, p0 for slip along x.
 
     Returns:
         A dict with pressure, kappa, alpha, m0..m3, a, b, m, b_tilde, p0, mu_M,
-        M_roll_per_hNR and consistency (which of the bounds hold).
+        M_roll_per_hNR and consistency (which of the bounds hold); on another spot pressure,
+        contact, kappa, alpha, a, b, m, b_tilde, p0, mu_M and M_roll_per_hNR.
     """
-    return _frictionid.coefficients(pressure, float(kappa), float(alpha))
+    return _frictionid.coefficients("hertz" if pressure is None else pressure, float(kappa),
+                                    float(alpha), contact=contact,
+                                    pressure_given=pressure is not None)
 
 
 def generate(
     model: str = "exact",
-    pressure: str = "hertz",
+    pressure: Optional[str] = None,
     params: Optional[Mapping[str, float]] = None,
     *,
+    contact: str = "circle",
     rows: int = 600,
     noise: float = 0.0,
     noise_abs: float = 0.0,
@@ -91,7 +105,7 @@ def generate(
     same seeded noise, same numbers).
 
     Args:
-        model, pressure, params: the model, as for :func:`evaluate`.
+        model, pressure, params, contact: the model, as for :func:`evaluate`.
         rows: rows of the design (slip/spin sweeps, eps log-spaced over eps_min..eps_max).
         noise: relative Gaussian noise (standard deviation as a fraction of each value).
         noise_abs: absolute Gaussian noise in the channel's units.
@@ -102,27 +116,31 @@ def generate(
         forward_only: no backward-slipping rows (else every 4th row has v_x < 0).
 
     Returns:
-        A pandas DataFrame with the canonical columns; ``df.attrs["truth"]`` holds the
-        parameters it was made with.
+        A pandas DataFrame with the canonical columns (``M_tilt`` too on a spot other than the
+        circle or with ``h_y``); ``df.attrs["truth"]`` holds the parameters it was made with.
     """
-    out = _frictionid.generate(model, pressure, _options.values("--param", params),
+    out = _frictionid.generate(model, "hertz" if pressure is None else pressure,
+                               _options.values("--param", params),
                                _options.whole_number("--rows", rows, 1, 10**7), noise,
                                noise_abs, sigma_columns,
                                _options.whole_number("--seed", seed, 0, 2**64 - 1), eps_min,
                                eps_max,
                                [float(x) for x in loads], R, spin,
-                               [float(x) for x in slip_angles_deg], forward_only)
+                               [float(x) for x in slip_angles_deg], forward_only,
+                               contact=contact, pressure_given=pressure is not None)
     df = _data.frame(out["columns"])
     df.attrs["truth"] = dict(out["truth"]["parameters"])
     df.attrs["pressure"] = out["truth"]["pressure"]
+    df.attrs["contact"] = out["truth"].get("contact", "circle")
     return df
 
 
 def simulate(
     model: str = "exact",
-    pressure: str = "uniform",
+    pressure: Optional[str] = "uniform",
     params: Optional[Mapping[str, float]] = None,
     *,
+    contact: str = "circle",
     inertia_ratio: float,
     v0: float = 1.0,
     omega0: float = 1.0,
@@ -139,7 +157,8 @@ def simulate(
     (docs/physics.md §4), as ``frictionid simulate``.
 
     Args:
-        model, pressure, params: the friction model, as for :func:`evaluate`.
+        model, pressure, params, contact: the friction model, as for :func:`evaluate` (pressure
+            None with a pressure map).
         inertia_ratio: I/(M_b R^2): 0.5 a uniform disk, 1 a thin ring.
         v0, omega0, slip_angle_deg: initial speed [m/s], spin [rad/s], slip direction [deg].
         mass: M_b [kg]; R: radius [m]; N: normal load [N] (default M_b * 9.81).
@@ -153,9 +172,11 @@ def simulate(
         trajectory) "trajectory", a pandas DataFrame of t, v_x, v_y, omega, eps, T_x, T_y,
         M_z, energy.
     """
-    out = dict(_frictionid.simulate(model, pressure, _options.values("--param", params),
-                                    inertia_ratio, v0, omega0, slip_angle_deg, mass, R, N, tol,
-                                    stop_fraction, max_steps, trajectory))
+    out = dict(_frictionid.simulate(model, "uniform" if pressure is None else pressure,
+                                    _options.values("--param", params), inertia_ratio, v0,
+                                    omega0, slip_angle_deg, mass, R, N, tol, stop_fraction,
+                                    max_steps, trajectory, contact=contact,
+                                    pressure_given=pressure is not None))
     if trajectory:
         out["trajectory"] = _data.frame(out["trajectory"])
     return out

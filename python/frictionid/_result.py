@@ -19,7 +19,8 @@ def _fmt(x: Optional[float], digits: int = 8) -> str:
 
 
 _REQUEST_FIELDS = (
-    "model", "pressure", "fix", "bounds", "start", "loss", "channels", "intervals",
+    "model", "pressure", "pressure_given", "contact", "fix", "free", "bounds", "start", "loss",
+    "channels", "intervals",
     "bootstrap", "noise_model", "starts", "seed", "global_evaluations", "global_subsample",
     "no_global", "global_algorithm", "threads",
 )
@@ -38,6 +39,7 @@ class FitResult:
         statistics: report["statistics"]: cost, chi2, reduced_chi2, aic, bic, dof, rmse, r2...
         warnings: list of warning sentences (parameters not determined, at bounds, ...).
         model, pressure: as passed to fit; rows: rows fitted.
+        contact: the contact spot as reports name it (``"circle"``, ``"ellipse:0.7"``, ...).
         index: the row labels of the fitted DataFrame (a RangeIndex for a file or a dict).
         eps: pandas Series, per row, v/(|omega| R) (inf where omega = 0).
         fitted: pandas DataFrame of the fitted channels' predictions, one row per data row.
@@ -54,7 +56,8 @@ class FitResult:
     unpickled copy recomputes once by fitting the same rows with the same options again.
     """
 
-    def __init__(self, output: "Optional[_frictionid.FitOutput]", model: str, pressure: str,
+    def __init__(self, output: "Optional[_frictionid.FitOutput]", model: str,
+                 pressure: Optional[str],
                  index: Any = None, request: "Optional[_frictionid.FitRequest]" = None
                  ) -> None:
         self._output = output
@@ -70,6 +73,7 @@ class FitResult:
         self.report: Dict[str, Any] = report
         self.model: str = self.report["model"]
         self.pressure: str = self.report["pressure"]
+        self.contact: str = self.report.get("contact", "circle")
         self.rows: int = self.report["rows"]
         self.channels: List[str] = list(self.report["channels"])
         p = self.report["parameters"]
@@ -170,9 +174,10 @@ class FitResult:
         return _data.frame(self._row_arrays()["data"], self.index)
 
     def predict(self, data: Any = None) -> "pandas.DataFrame":
-        """The fitted model's T_x, T_y, M_z, M_roll and N for every row of ``data`` (a
-        DataFrame or dict with v_x, v_y (optional), omega, N, R; default the fitted rows), as a
-        pandas DataFrame on ``data``'s index (the fitted rows' index by default)."""
+        """The fitted model's T_x, T_y, M_z, M_roll (M_tilt on a spot other than the circle
+        or with h_y) and N for every row of ``data`` (a DataFrame or dict with v_x, v_y
+        (optional), omega, N, R; default the fitted rows), as a pandas DataFrame on ``data``'s
+        index (the fitted rows' index by default)."""
         from ._model import evaluate
 
         if data is None:
@@ -180,8 +185,14 @@ class FitResult:
         else:
             index = data.index if hasattr(data, "iloc") else None
         v_y = data["v_y"] if "v_y" in data.keys() else 0.0
-        out = evaluate(self.model, self._pressure_spec, self.params, data["v_x"], v_y,
-                       data["omega"], data["N"], data["R"])
+        # The spot with the fitted aspect q, which the spot names instead of a parameter.
+        params = dict(self.params)
+        contact = self.contact
+        if "q" in params:
+            q = params.pop("q")
+            contact = f"{contact.split(':', 1)[0]}:{q!r}"
+        out = evaluate(self.model, self._pressure_spec, params, data["v_x"], v_y,
+                       data["omega"], data["N"], data["R"], contact=contact)
         return _data.frame(out, index)
 
     # -- files and text ---------------------------------------------------------------------
@@ -198,6 +209,7 @@ class FitResult:
             "[[Fit Statistics]]",
             f"    model              = {self.model}",
             f"    pressure           = {self.pressure}",
+            *([f"    contact            = {self.contact}"] if self.contact != "circle" else []),
             f"    # data rows        = {self.rows}",
             f"    channels           = {', '.join(self.channels)}",
             f"    # residuals        = {st['residuals']}",

@@ -23,6 +23,7 @@
 #include "app/batch_fit_run.hpp"
 #include "app/batch_runs.hpp"
 #include "app/fit_request.hpp"
+#include "app/option_parsers.hpp"
 #include "app/request_json.hpp"
 #include "app/requests.hpp"
 #include "identify/thread_budget.hpp"
@@ -133,7 +134,7 @@ std::pair<std::string, std::optional<std::string>> fit_run(
     ThreadBudget budget(threads);
     const ThreadBudgetScope scope(&budget);
     row = app::fit_batch_run(run, threads, nullptr, [&](const FitResult& r, const Dataset&) {
-      if (report) report_text = dump(report_json(r), 2) + "\n";
+      if (report) report_text = dump(report_json(r, contact_label(run.options.contact)), 2) + "\n";
     });
   }
   return {dump(summary_row_json(row)), report_text};

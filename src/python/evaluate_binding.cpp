@@ -21,8 +21,9 @@ namespace {
 py::dict evaluate(const std::string& model, const std::string& pressure,
                   const app::ParameterValues& params, const DoubleArray& v_x,
                   const DoubleArray& v_y, const DoubleArray& omega, const DoubleArray& N,
-                  const DoubleArray& R) {
-  const app::ModelSetup s = app::make_model_setup({model, pressure, params});
+                  const DoubleArray& R, const std::string& contact, bool pressure_given) {
+  const app::ModelSetup s =
+      app::make_model_setup({model, pressure, params, contact, pressure_given});
   const std::size_t rows = static_cast<std::size_t>(v_x.size());
   const DoubleArray* inputs[] = {&v_x, &v_y, &omega, &N, &R};
   const char* names[] = {"v_x", "v_y", "omega", "N", "R"};
@@ -41,6 +42,7 @@ py::dict evaluate(const std::string& model, const std::string& pressure,
   d["T_y"] = to_numpy(out.T_y);
   d["M_z"] = to_numpy(out.M_z);
   d["M_roll"] = to_numpy(out.M_roll);
+  if (app::shows_tilt(s)) d["M_tilt"] = to_numpy(out.M_tilt);
   d["N"] = to_numpy(out.N);
   return d;
 }
@@ -49,13 +51,16 @@ py::dict evaluate(const std::string& model, const std::string& pressure,
 
 void register_evaluate(py::module_& m) {
   m.def("evaluate", &evaluate, py::arg("model"), py::arg("pressure"), py::arg("params"),
-        py::arg("v_x"), py::arg("v_y"), py::arg("omega"), py::arg("N"), py::arg("R"));
+        py::arg("v_x"), py::arg("v_y"), py::arg("omega"), py::arg("N"), py::arg("R"),
+        py::arg("contact") = "circle", py::arg("pressure_given") = true);
   m.def(
       "coefficients",
-      [](const std::string& pressure, double kappa, double alpha) {
-        return to_python(app::law_coefficients({pressure, kappa, alpha}));
+      [](const std::string& pressure, double kappa, double alpha, const std::string& contact,
+         bool pressure_given) {
+        return to_python(app::law_coefficients({pressure, kappa, alpha, contact, pressure_given}));
       },
-      py::arg("pressure"), py::arg("kappa"), py::arg("alpha"));
+      py::arg("pressure"), py::arg("kappa"), py::arg("alpha"), py::arg("contact") = "circle",
+      py::arg("pressure_given") = true);
 }
 
 }  // namespace frictionid::python

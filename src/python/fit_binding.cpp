@@ -9,6 +9,7 @@
 #include <frictionid/fit_error.hpp>
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
+#include <frictionid/io/pressure_map_reader.hpp>
 #include <frictionid/io/report_writer.hpp>
 #include "app/fit_request.hpp"
 #include "app/option_parsers.hpp"
@@ -33,6 +34,7 @@ struct FitOutput {
   FitResult result;
   std::shared_ptr<Dataset> data;
   app::RowSigmas sigma;
+  std::string contact = "circle";  // the spot as reports name it
 };
 
 std::shared_ptr<Dataset> from_columns(const py::dict& columns, const std::string& source,
@@ -46,9 +48,10 @@ std::shared_ptr<Dataset> from_columns(const py::dict& columns, const std::string
 std::shared_ptr<FitOutput> run_fit(const std::shared_ptr<Dataset>& data,
                                    const app::FitRequest& request, const py::object& cancel,
                                    const py::object& progress) {
-  const FitSettings s = app::fit_settings(request, request.model);
+  const FitSettings s = app::fit_settings(request, request.model, *data);
   auto out = std::make_shared<FitOutput>();
   out->data = data;
+  out->contact = contact_spot_label(s.contact);
   PythonObserver observer(cancel, progress);
   try {
     py::gil_scoped_release release;
@@ -142,6 +145,9 @@ void register_fit(py::module_& m) {
       .def(py::init<>())
       .def_readwrite("model", &FitRequest::model)
       .def_readwrite("pressure", &FitRequest::pressure)
+      .def_readwrite("pressure_given", &FitRequest::pressure_given)
+      .def_readwrite("contact", &FitRequest::contact)
+      .def_readwrite("free", &FitRequest::free)
       .def_readwrite("fix", &FitRequest::fix)
       .def_readwrite("bounds", &FitRequest::bounds)
       .def_readwrite("start", &FitRequest::start)
@@ -183,16 +189,17 @@ void register_fit(py::module_& m) {
   m.def(
       "apply_fit_text",
       [](FitRequest& r, const std::string& fix, const std::string& bounds, const std::string& start,
-         const std::string& channels, const std::string& columns) {
-        app::apply(app::FitText{fix, bounds, start, channels, columns}, r);
+         const std::string& channels, const std::string& columns, const std::string& free) {
+        app::apply(app::FitText{fix, bounds, start, channels, columns, free}, r);
       },
       py::arg("request"), py::kw_only(), py::arg("fix") = "", py::arg("bounds") = "",
-      py::arg("start") = "", py::arg("channels") = "", py::arg("columns") = "");
+      py::arg("start") = "", py::arg("channels") = "", py::arg("columns") = "",
+      py::arg("free") = "");
   m.def("name_list", &app::name_list, py::arg("option"), py::arg("text"));
 
   py::class_<FitOutput, std::shared_ptr<FitOutput>>(m, "FitOutput")
       .def(
-          "report", [](const FitOutput& f) { return to_python(report_json(f.result)); },
+          "report", [](const FitOutput& f) { return to_python(report_json(f.result, f.contact)); },
           "report.json's content as Python values (no JSON text in between).")
       .def(
           "write_report",
@@ -202,6 +209,7 @@ void register_fit(py::module_& m) {
             const ThreadBudgetScope scope(&budget);
             ReportOptions options;
             options.threads = threads;
+            options.contact = f.contact;
             return write_report(dir, f.result, *f.data, options);
           },
           py::arg("dir"), py::arg("threads") = 0)

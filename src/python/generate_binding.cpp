@@ -17,9 +17,10 @@ py::dict generate(const std::string& model, const std::string& pressure,
                   const app::ParameterValues& params, std::size_t rows, double noise,
                   double noise_abs, bool sigma_columns, unsigned long long seed, double eps_min,
                   double eps_max, const std::vector<double>& loads, double R, double spin,
-                  const std::vector<double>& slip_angles_deg, bool forward_only) {
+                  const std::vector<double>& slip_angles_deg, bool forward_only,
+                  const std::string& contact, bool pressure_given) {
   app::GenerateRequest r;
-  r.model = {model, pressure, params};
+  r.model = {model, pressure, params, contact, pressure_given};
   r.rows = rows;
   r.noise = noise;
   r.noise_abs = noise_abs;
@@ -49,7 +50,8 @@ void register_generate(py::module_& m) {
   m.def("generate", &generate, py::arg("model"), py::arg("pressure"), py::arg("params"),
         py::arg("rows"), py::arg("noise"), py::arg("noise_abs"), py::arg("sigma_columns"),
         py::arg("seed"), py::arg("eps_min"), py::arg("eps_max"), py::arg("loads"), py::arg("R"),
-        py::arg("spin"), py::arg("slip_angles_deg"), py::arg("forward_only"));
+        py::arg("spin"), py::arg("slip_angles_deg"), py::arg("forward_only"),
+        py::arg("contact") = "circle", py::arg("pressure_given") = true);
 }
 
 }  // namespace frictionid::python

@@ -19,9 +19,9 @@ py::dict simulate(const std::string& model, const std::string& pressure,
                   const app::ParameterValues& params, double inertia_ratio, double v0,
                   double omega0, double slip_angle_deg, double mass, double R,
                   std::optional<double> N, double tol, double stop_fraction, long max_steps,
-                  bool trajectory) {
+                  bool trajectory, const std::string& contact, bool pressure_given) {
   app::SimulateRequest r;
-  r.model = {model, pressure, params};
+  r.model = {model, pressure, params, contact, pressure_given};
   r.inertia_ratio = inertia_ratio;
   r.v0 = v0;
   r.omega0 = omega0;
@@ -60,7 +60,8 @@ void register_simulate(py::module_& m) {
   m.def("simulate", &simulate, py::arg("model"), py::arg("pressure"), py::arg("params"),
         py::arg("inertia_ratio"), py::arg("v0"), py::arg("omega0"), py::arg("slip_angle_deg"),
         py::arg("mass"), py::arg("R"), py::arg("N"), py::arg("tol"), py::arg("stop_fraction"),
-        py::arg("max_steps"), py::arg("trajectory"));
+        py::arg("max_steps"), py::arg("trajectory"), py::arg("contact") = "circle",
+        py::arg("pressure_given") = true);
 }
 
 }  // namespace frictionid::python
