@@ -205,6 +205,8 @@ TEST_P(Corpus, BehavesAsTheManifestSays) {
             "--input", input,     "--output", output.string()};
   else if (c.kind == "coefficients")
     args = {"coefficients", "--pressure", "table:" + input};
+  else if (c.kind == "map")
+    args = {"coefficients", "--contact", "map:" + input};
   else
     FAIL() << "unknown kind '" << c.kind << "'";
 
@@ -277,7 +279,8 @@ TEST(BadInputManifest, HasAValidLineForEveryFileAndAtLeastFortyFiles) {
   std::set<std::string> files, names;
   for (const auto& c : cases) {
     SCOPED_TRACE("expected.tsv:" + std::to_string(c.manifest_line));
-    EXPECT_TRUE(c.kind == "fit" || c.kind == "eval" || c.kind == "coefficients") << c.kind;
+    EXPECT_TRUE(c.kind == "fit" || c.kind == "eval" || c.kind == "coefficients" || c.kind == "map")
+        << c.kind;
     EXPECT_FALSE(c.exit.empty());
     EXPECT_FALSE(c.where.empty());
     EXPECT_FALSE(c.expect.empty());
