@@ -15,10 +15,10 @@ if TYPE_CHECKING:
 
 # The canonical dataset columns (docs/design.md "Dataset CSV").
 COLUMNS = (
-    "v_x", "v_y", "omega", "N", "R", "T_x", "T_y", "M_z", "M_roll",
-    "sigma_T_x", "sigma_T_y", "sigma_M_z", "sigma_M_roll",
+    "v_x", "v_y", "omega", "N", "R", "T_x", "T_y", "M_z", "M_roll", "M_tilt",
+    "sigma_T_x", "sigma_T_y", "sigma_M_z", "sigma_M_roll", "sigma_M_tilt",
 )
-CHANNELS = ("T_x", "T_y", "M_z", "M_roll")
+CHANNELS = ("T_x", "T_y", "M_z", "M_roll", "M_tilt")
 
 DataLike = Union[str, "os.PathLike[str]", Mapping[str, Any], Any]
 

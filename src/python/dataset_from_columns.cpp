@@ -30,13 +30,15 @@ Dataset dataset_from_columns(std::map<std::string, std::vector<double>> columns,
     if (!columns.count(name))
       throw InputError(source, 0, 0,
                        fmt::format("no column '{}'; expected columns v_x, omega, N, R (v_y "
-                                   "optional) and at least one of T_x, T_y, M_z, M_roll",
+                                   "optional) and at least one of T_x, T_y, M_z, M_roll, "
+                                   "M_tilt",
                                    name));
   bool any_channel_column = false;
   for (Channel c : kAllChannels) any_channel_column |= columns.count(channel_name(c)) > 0;
   if (!any_channel_column)
     throw InputError(source, 0, 0,
-                     "no channel column; expected at least one of T_x, T_y, M_z, M_roll");
+                     "no channel column; expected at least one of T_x, T_y, M_z, M_roll, "
+                     "M_tilt");
 
   const std::size_t rows = columns.at("v_x").size();
   for (const auto& [name, values] : columns)

@@ -9,10 +9,10 @@
 //
 //   v_x, omega, N, R                       required, every row, finite; N > 0, R > 0
 //   v_y                                    optional column (0 when absent); if present, required
-//   T_x, T_y, M_z, M_roll                  at least one of these columns; a row may leave some
+//   T_x, T_y, M_z, M_roll, M_tilt          at least one of these columns; a row may leave some
 //                                          empty but must measure at least one channel
 //   sigma_T_x, sigma_T_y, sigma_M_z,       optional; finite and > 0 in every row whose channel
-//   sigma_M_roll                           is present (ignored in rows where it is absent)
+//   sigma_M_roll, sigma_M_tilt             is present (ignored in rows where it is absent)
 //
 // Numbers are read with a correctly rounded conversion (values written with %.17g read back
 // bit-identical); NaN/Inf spellings, hexadecimal floats, out-of-range values and trailing
