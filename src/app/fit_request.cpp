@@ -104,8 +104,10 @@ FitSettings fit_settings(const FitRequest& o, const std::string& model, bool len
   const auto used = model_parameters(s.model, s.law.kind, contact.kind, /*tilt_y=*/true);
   for (const auto& name : o.free)
     if (name == "q" && !contact.has_aspect())
-      throw InputError("--free q: q is the aspect of --contact ellipse:Q or rect:Q; the " +
-                       contact_label + " has none to fit");
+      throw InputError(std::string("--free q: q is the aspect of --contact ellipse:Q or "
+                                   "rect:Q; ") +
+                       (contact.kind == model::SpotKind::Map ? "a pressure map" : "the circle") +
+                       " has none to fit");
   check_names("--free", o.free);
   std::vector<bool> start_given(s.params.size(), false), bounds_given(s.params.size(), false);
   check_values("--param", o.start);

@@ -32,8 +32,13 @@ int run_compare(const app::CompareRequest& o) {
       app::FitRequest v = o.fit;
       v.model = name;
       v.contact = contact;
-      (void)app::fit_settings(v, name, /*lenient=*/true);  // before any file is read
       const std::string label = contact_label(contact);
+      if (label != "circle" && name != "exact")
+        throw InputError("--contact", 0, 0,
+                         "'" + label + "' with --models " + name + ": the " + name +
+                             " approximant knows the circular spot only; compare spots with "
+                             "--models exact");
+      (void)app::fit_settings(v, name, /*lenient=*/true);  // before any file is read
       const std::string variant = label == "circle" ? name : name + "@" + label;
       const std::string directory = compare_variant_directory(variant);
       for (const auto& other : variant_names)
@@ -82,10 +87,15 @@ int run_compare(const app::CompareRequest& o) {
       on_circle_only ? std::vector<std::string>{} : contacts;
   const auto files = write_compare_report(o.fit.report, c, data, provenance, fit_contacts);
   const ModelComparison named = compare_named_variants(c, fit_contacts);
-  std::printf("%-10s %14s %14s %10s\n", "model", "chi2", "AIC", "dAIC");
+  // Model names are 10 wide, as they always were; a longer MODEL@SPOT widens the column.
+  int width = 10;
+  for (const auto& f : named.fits)
+    width = std::max(width, static_cast<int>(text::for_terminal(f.model).size()));
+  std::printf("%-*s %14s %14s %10s\n", width, "model", "chi2", "AIC", "dAIC");
   for (std::size_t k = 0; k < named.fits.size(); ++k)
-    std::printf("%-10s %14.6g %14.6g %10.4g\n", text::for_terminal(named.fits[k].model).c_str(),
-                named.fits[k].chi2, named.fits[k].aic, named.delta_aic[k]);
+    std::printf("%-*s %14.6g %14.6g %10.4g\n", width,
+                text::for_terminal(named.fits[k].model).c_str(), named.fits[k].chi2,
+                named.fits[k].aic, named.delta_aic[k]);
   std::printf("preferred by AIC: %s, by BIC: %s\n",
               text::for_terminal(named.preferred_by_aic).c_str(),
               text::for_terminal(named.preferred_by_bic).c_str());
