@@ -214,9 +214,12 @@ FitSettings fit_settings(const FitRequest& o, const std::string& model, const Da
                          bool lenient) {
   FitSettings s = fit_settings(o, model, lenient);
   ParameterSetting& h_y = s.params[kHy];
-  // A circle's fit takes the tilt across the rolling direction in when the data measure it.
-  if (s.model == ModelKind::Exact && data.has_channel(Channel::M_tilt) && !o.fix.count("h_y"))
-    h_y.fixed = false;
+  // A circle's fit takes the tilt across the rolling direction in when the data measure it
+  // (and --channels does not leave M_tilt out).
+  const bool fits_tilt = data.has_channel(Channel::M_tilt) &&
+                         (s.channels.empty() || std::find(s.channels.begin(), s.channels.end(),
+                                                          Channel::M_tilt) != s.channels.end());
+  if (s.model == ModelKind::Exact && fits_tilt && !o.fix.count("h_y")) h_y.fixed = false;
   if (const auto start = o.start.find("h_y"); start != o.start.end()) {
     if (h_y.fixed) {
       if (lenient) return s;

@@ -104,11 +104,14 @@ TEST(ContactRequest, FreeQFitsTheAspectFromTheSpotsValue) {
   EXPECT_EQ(s.params[kQ].initial, 0.5);
 }
 
-TEST(ContactRequest, AnMTiltColumnFreesHyOnTheCircleUnlessFixed) {
+TEST(ContactRequest, AFittedMTiltColumnFreesHyOnTheCircleUnlessFixed) {
   const Dataset with_tilt = rows_measuring({Channel::T_x, Channel::M_tilt});
   const Dataset without = rows_measuring({Channel::T_x});
   EXPECT_FALSE(fit_settings(exact_on("circle"), "exact", with_tilt).params[kHy].fixed);
   EXPECT_TRUE(fit_settings(exact_on("circle"), "exact", without).params[kHy].fixed);
+  FitRequest other_channels = exact_on("circle");
+  other_channels.channels = {"T_x"};
+  EXPECT_TRUE(fit_settings(other_channels, "exact", with_tilt).params[kHy].fixed);
   FitRequest fixed = exact_on("circle");
   fixed.fix = {{"h_y", 0.02}};
   const FitSettings s = fit_settings(fixed, "exact", with_tilt);
