@@ -47,6 +47,30 @@ TEST(VarianceProfile, TheSearchFindsTheInteriorMaximumAndReportsItsLikelihood) {
   }
 }
 
+// give_up_above: a search that ends at or below it is the search without it, to the bit; one
+// that cannot reach it is left (given_up), and what it finds is not reported.
+TEST(VarianceProfile, ABoundToBeatLeavesOnlySearchesThatCannotReachIt) {
+  for (TwoTermForm form : {TwoTermForm::Affine, TwoTermForm::Additive}) {
+    const Sample s = sample(form, 0.002, 0.02, 400, 3);
+    const TwoTermMaximum m = two_term_maximum(form, s.y, s.e);
+    ASSERT_TRUE(m.found);
+    EXPECT_EQ(m.given_up, 0);
+    const TwoTermRange range = two_term_range(form, s.y, s.e);
+    for (double above : {0.0, 1.0, 100.0}) {
+      const TwoTermMaximum b = two_term_maximum(form, s.y, s.e, range, m.neg2_loglik + above);
+      EXPECT_EQ(b.given_up, 0);
+      EXPECT_EQ(b.found, m.found);
+      EXPECT_EQ(b.s_abs, m.s_abs);
+      EXPECT_EQ(b.s_rel, m.s_rel);
+      EXPECT_EQ(b.neg2_loglik, m.neg2_loglik);
+      EXPECT_EQ(b.converged, m.converged);
+    }
+    const TwoTermMaximum below = two_term_maximum(form, s.y, s.e, range, m.neg2_loglik - 50.0);
+    EXPECT_GT(below.given_up, 0);
+    EXPECT_FALSE(below.found);
+  }
+}
+
 TEST(VarianceProfile, NoResidualsOrNoFittedValuesLeaveOnlyTheBounds) {
   const std::vector<double> y = {0.5, -1.0, 0.2}, zeros = {0.0, 0.0, 0.0};
   EXPECT_FALSE(two_term_maximum(TwoTermForm::Affine, y, zeros).found);
