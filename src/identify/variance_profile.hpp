@@ -50,6 +50,11 @@ TwoTermMaximum two_term_maximum(TwoTermForm form, const std::vector<double>& y,
                                 const std::vector<double>& e, const TwoTermRange& range,
                                 double give_up_above);
 
+// Whether the grid of two_term_maximum may evaluate four points at a time in AVX2 vectors where
+// the processor has AVX2 (and the build is not FRICTIONID_PORTABLE); on unless turned off. Off:
+// one point at a time, the same bits. Process-wide; for tests and comparisons.
+void allow_profile_lanes(bool allow);
+
 // The gradient check (8.10c): the decrease of -2 ln L that one Fisher-scoring step from (s_abs,
 // s_rel) still promises, 1/2 g' F^-1 g, g the gradient and F the Fisher information in
 // log-parameters. A parameter at 0 counts only when moving it inward would descend (there in the
