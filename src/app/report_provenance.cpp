@@ -2,9 +2,11 @@
 #include "app/report_provenance.hpp"
 
 #include <exception>
+#include <utility>
 
 #include "app/fit_request.hpp"
 #include "app/request_json.hpp"
+#include "identify/thread_budget.hpp"
 
 namespace frictionid::app {
 
@@ -24,6 +26,22 @@ Provenance report_provenance(const FitRequest& r, const std::vector<std::string>
     }
   }
   return p;
+}
+
+std::future<Provenance> report_provenance_async(const FitRequest& r,
+                                                std::vector<std::string> inputs) {
+  ThreadBudget* const budget = current_thread_budget();
+  if (budget && budget->acquire(1) == 1)
+    return std::async(std::launch::async, [&r, budget, inputs = std::move(inputs)] {
+      struct Release {
+        ThreadBudget* budget;
+        ~Release() { budget->release(1); }
+      } release{budget};
+      return report_provenance(r, inputs);
+    });
+  std::promise<Provenance> now;
+  now.set_value(report_provenance(r, inputs));
+  return now.get_future();
 }
 
 }  // namespace frictionid::app

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <stdexcept>
 #include <system_error>
 
@@ -44,7 +45,9 @@ int run_fit(const app::FitRequest& o) {
   report_options.plot_x = o.plot_x;
   report_options.color_by = o.color_by;
   report_options.threads = o.threads;
-  report_options.provenance = app::report_provenance(o, {o.data});
+  // Hashed while the fit starts (its global stage runs on one thread); waited for before the
+  // report. Any way out of this function waits for it too (the future's destructor).
+  std::future<Provenance> provenance = app::report_provenance_async(o, {o.data});
   try {
     check_report_columns(data, report_options);  // before the fit, not after it
   } catch (const std::invalid_argument& e) {
@@ -70,6 +73,7 @@ int run_fit(const app::FitRequest& o) {
     std::fprintf(stderr, "frictionid: interrupted; no report written\n");
     return kExitInterrupted;
   }
+  report_options.provenance = provenance.get();
   const auto t_write = std::chrono::steady_clock::now();
   const auto files = write_report(o.report, r, data, report_options);
   const double write_s = seconds(std::chrono::steady_clock::now() - t_write).count();

@@ -38,16 +38,22 @@ class LogSum {
     }
   }
 
-  double sum() const {
+  double sum() const { return sum_of(exponent_, logs_, product_, special_); }
+
+  // For code that keeps a LogSum's state in its own form (variance_profile.cpp: one per vector
+  // lane): values go a block of kBlock at a time, the exponents summed, the mantissas (bits
+  // kMantissa with those of kOne) multiplied into the block's product, ln of a full block's
+  // product added to logs. The sum of that state, as sum() forms it.
+  static constexpr int kBlock = 32;
+  static constexpr std::uint64_t kMantissa = 0x000fffffffffffffULL, kOne = 0x3ff0000000000000ULL;
+  static double sum_of(long long exponent, double logs, double product, double special) {
     // ln 2 in two parts (fdlibm's): e ln2_hi is exact for |e| < 2^21, the rest is rounding.
     constexpr double ln2_hi = 6.93147180369123816490e-01, ln2_lo = 1.90821492927058770002e-10;
-    const auto e = static_cast<double>(exponent_);
-    return (e * ln2_hi + (logs_ + std::log(product_))) + e * ln2_lo + special_;
+    const auto e = static_cast<double>(exponent);
+    return (e * ln2_hi + (logs + std::log(product))) + e * ln2_lo + special;
   }
 
  private:
-  static constexpr int kBlock = 32;
-  static constexpr std::uint64_t kMantissa = 0x000fffffffffffffULL, kOne = 0x3ff0000000000000ULL;
   double product_ = 1.0;  // mantissas of the open block
   int count_ = 0;         // values in the open block
   double logs_ = 0.0;     // ln of the closed blocks' products

@@ -16,9 +16,15 @@ constexpr double kTiny = 1e-300;
 // The gradient check's threshold (8.10c): a step that would lower -2 ln L by less than this
 // changes no decision and no digit a report shows.
 constexpr double kGainTolerance = 1e-6;
+// Auto (two_term_noise): a two-term form is left once its -2 ln L is certain to end this far
+// (times 1 + 1e-9 (n + |-2 ln L|), Fisher scoring's rounding window) above what it would need
+// to be chosen. 1 is a likelihood ratio of e^0.5.
+constexpr double kLossMargin = 1.0;
 
 // What the likelihood needs of a sample beyond its length, gathered in one pass: the closed
 // forms below then score the constant model and the affine model's bounds without a log per row.
+// The same pass adds the sums of the one-term estimates and the search's ranges (TwoTermRange),
+// each in row order as its own loop would (the results are the same to the bit).
 struct SampleSums {
   double e2 = 0.0;           // sum e^2
   std::size_t nonzero = 0;   // rows with y != 0
@@ -26,11 +32,18 @@ struct SampleSums {
   double e2_over_y2 = 0.0;   // sum e^2/y^2 over them
   double zero_e2 = 0.0;      // sum e^2 over the rows with y = 0
   double min_y2 = HUGE_VAL;  // smallest nonzero y^2
+  double mean_e2 = 0.0;      // mean of e^2
+  double mean_y2 = 0.0;      // mean of y^2
+  TwoTermRange affine, additive;
 };
 
-SampleSums sample_sums(const std::vector<double>& y, const std::vector<double>& e) {
+// peak_y, peak_e: the largest |y| and |e|. mean_y2 and mean_e2 are the mean squares, summed in
+// units of the peak: no overflow near the top of the double range.
+SampleSums sample_sums(const std::vector<double>& y, const std::vector<double>& e, double peak_y,
+                       double peak_e) {
   SampleSums t;
   LogSum log_y2;
+  double sum_y = 0.0, sum_e = 0.0, min_abs_y = HUGE_VAL;
   for (std::size_t i = 0; i < y.size(); ++i) {
     const double y2 = y[i] * y[i], e2 = e[i] * e[i];
     t.e2 += e2;
@@ -42,8 +55,17 @@ SampleSums sample_sums(const std::vector<double>& y, const std::vector<double>& 
     } else {
       t.zero_e2 += e2;
     }
+    if (std::fabs(y[i]) > 0.0) min_abs_y = std::min(min_abs_y, std::fabs(y[i]));
+    if (peak_y != 0.0) sum_y += (y[i] / peak_y) * (y[i] / peak_y);
+    if (peak_e != 0.0) sum_e += (e[i] / peak_e) * (e[i] / peak_e);
   }
   t.log_y2 = log_y2.sum();
+  const auto n = static_cast<double>(y.size());
+  t.mean_y2 = peak_y == 0.0 ? 0.0 : peak_y * peak_y * sum_y / n;
+  t.mean_e2 = peak_e == 0.0 ? 0.0 : peak_e * peak_e * sum_e / n;
+  // max y^2 is the square of max |y| (rounding is monotone); NaNs count in neither.
+  t.affine = TwoTermRange{peak_y * peak_y, t.min_y2, t.e2};
+  t.additive = TwoTermRange{peak_y, min_abs_y, t.e2};
   return t;
 }
 
@@ -98,27 +120,19 @@ std::optional<double> proportional_neg2_loglik(double b, const SampleSums& t) {
   return static_cast<double>(t.nonzero) * std::log(b) + t.log_y2 + t.e2_over_y2 / b;
 }
 
-double mean_square(const std::vector<double>& v) {
-  double peak = 0.0;
-  for (double x : v) peak = std::max(peak, std::fabs(x));
-  if (peak == 0.0) return 0.0;
-  double s = 0.0;
-  for (double x : v) s += (x / peak) * (x / peak);
-  return peak * peak * s / static_cast<double>(v.size());
-}
-
 ChannelNoise constant_noise(const std::vector<double>& e, const SampleSums& t) {
   ChannelNoise n;
   n.kind = NoiseModelKind::Constant;
-  n.s_abs = std::sqrt(mean_square(e));
+  n.s_abs = std::sqrt(t.mean_e2);
   set_score(n, constant_neg2_loglik(n.s_abs * n.s_abs, e.size(), t), e.size(), 1);
   return n;
 }
 
-ChannelNoise relative_noise(const std::vector<double>& y, const std::vector<double>& e) {
+ChannelNoise relative_noise(const std::vector<double>& y, const std::vector<double>& e,
+                            const SampleSums& t) {
   ChannelNoise n;
   n.kind = NoiseModelKind::Relative;
-  n.floor = 1e-3 * std::sqrt(mean_square(y));
+  n.floor = 1e-3 * std::sqrt(t.mean_y2);
   double s = 0.0;
   for (std::size_t i = 0; i < y.size(); ++i) {
     const double m = std::max(std::fabs(y[i]), n.floor);
@@ -155,7 +169,7 @@ ChannelNoise fisher_scoring_affine(const std::vector<double>& y, const std::vect
                                    const SampleSums& t) {
   // Start halfway between the pure forms so that neither bound is active at the start.
   double a = 0.5 * c.s_abs * c.s_abs, b = 0.5 * r.s_rel * r.s_rel;
-  const double ym2 = mean_square(y);
+  const double ym2 = t.mean_y2;
   for (int it = 0; it < 100; ++it) {
     double s00 = 0, s01 = 0, s11 = 0, t0 = 0, t1 = 0;
     for (std::size_t i = 0; i < y.size(); ++i) {
@@ -202,11 +216,23 @@ ChannelNoise fisher_scoring_affine(const std::vector<double>& y, const std::vect
 // rounding of the best -2 log L, and passing the gradient check (8.10c)), so that the fits it
 // served stay as they were to the last digit. A failed gradient check is kept as the estimate's
 // problem.
-ChannelNoise two_term_noise(NoiseModelKind kind, const std::vector<double>& y,
-                            const std::vector<double>& e, const ChannelNoise& c,
-                            const ChannelNoise& r, const SampleSums& t) {
+//
+// beat_bic (Auto): the smallest BIC among the forms before this one. Where this form's -2 ln L
+// clearly cannot bring its BIC below it (by kLossMargin, more than any rounding), nullopt: the
+// estimate would not be chosen, and the work that only refines it (the rest of the search,
+// Fisher scoring, the gradient checks) is left out. Otherwise the estimate, the same to the bit
+// as without beat_bic.
+std::optional<ChannelNoise> two_term_noise(NoiseModelKind kind, const std::vector<double>& y,
+                                           const std::vector<double>& e, const ChannelNoise& c,
+                                           const ChannelNoise& r, const SampleSums& t,
+                                           double beat_bic = HUGE_VAL) {
   const TwoTermForm form =
       kind == NoiseModelKind::Affine ? TwoTermForm::Affine : TwoTermForm::Additive;
+  const auto rows = static_cast<double>(y.size());
+  // The -2 ln L above which this form loses to beat_bic by the margin (inf: no bound).
+  const double beat = beat_bic - 2.0 * std::log(rows);
+  const double give_up_above =
+      std::isfinite(beat) ? beat + kLossMargin * (1.0 + 1e-9 * (rows + std::fabs(beat))) : HUGE_VAL;
   ChannelNoise best;
   best.kind = kind;
   best.s_abs = c.s_abs;
@@ -219,7 +245,8 @@ ChannelNoise two_term_noise(NoiseModelKind kind, const std::vector<double>& y,
     set_score(p, bound_neg2_loglik(0.0, b, y, e, t), y.size(), 2);
     if (p.neg2_loglik < best.neg2_loglik) best = p;
   }
-  const TwoTermMaximum m = two_term_maximum(form, y, e);
+  const TwoTermMaximum m = two_term_maximum(
+      form, y, e, form == TwoTermForm::Affine ? t.affine : t.additive, give_up_above);
   if (m.found) {
     ChannelNoise in;
     in.kind = kind;
@@ -228,6 +255,9 @@ ChannelNoise two_term_noise(NoiseModelKind kind, const std::vector<double>& y,
     score(in, y, e, 2);
     if (in.neg2_loglik < best.neg2_loglik) best = in;
   }
+  // The searches given up ended above give_up_above: had one gone on, it would not have beaten
+  // a best at or below it.
+  if (best.neg2_loglik > give_up_above) return std::nullopt;
   if (kind == NoiseModelKind::Affine) {
     const ChannelNoise f = fisher_scoring_affine(y, e, c, r, t);
     const double rounding = 1e-9 * (static_cast<double>(y.size()) + std::fabs(best.neg2_loglik));
@@ -257,43 +287,45 @@ double noise_sigma(const ChannelNoise& n, double y) {
                                      : std::hypot(n.s_abs, p);
 }
 
-ChannelNoise estimate_channel_noise(const std::vector<double>& fitted_in,
-                                    const std::vector<double>& residual_in, NoiseModelKind kind,
-                                    double dof_factor) {
+ChannelNoise estimate_channel_noise(std::vector<double> fitted, std::vector<double> residual,
+                                    NoiseModelKind kind, double dof_factor) {
   // Estimated in units of the sample's largest magnitude: variances of values near the top of
   // the double range must not overflow.
   double unit = 0.0;
-  for (std::size_t i = 0; i < fitted_in.size(); ++i)
-    unit = std::max({unit, std::fabs(fitted_in[i]), std::fabs(residual_in[i])});
+  for (std::size_t i = 0; i < fitted.size(); ++i)
+    unit = std::max({unit, std::fabs(fitted[i]), std::fabs(residual[i])});
   if (!(unit > 0.0) || !std::isfinite(unit)) unit = 1.0;
-  std::vector<double> fitted(fitted_in.size()), residual(residual_in.size());
+  double peak_y = 0.0, peak_e = 0.0;
   for (std::size_t i = 0; i < fitted.size(); ++i) {
-    fitted[i] = fitted_in[i] / unit;
-    residual[i] = residual_in[i] / unit;
+    fitted[i] /= unit;
+    residual[i] /= unit;
+    peak_y = std::max(peak_y, std::fabs(fitted[i]));
+    peak_e = std::max(peak_e, std::fabs(residual[i]));
   }
   ChannelNoise n;
-  const SampleSums sums = sample_sums(fitted, residual);
+  const SampleSums sums = sample_sums(fitted, residual, peak_y, peak_e);
   switch (kind) {
     case NoiseModelKind::Constant:
       n = constant_noise(residual, sums);
       break;
     case NoiseModelKind::Relative:
-      n = relative_noise(fitted, residual);
+      n = relative_noise(fitted, residual, sums);
       break;
     case NoiseModelKind::Affine:
     case NoiseModelKind::Additive:
-      n = two_term_noise(kind, fitted, residual, constant_noise(residual, sums),
-                         relative_noise(fitted, residual), sums);
+      n = *two_term_noise(kind, fitted, residual, constant_noise(residual, sums),
+                          relative_noise(fitted, residual, sums), sums);
       break;
     default: {  // Auto: the smallest BIC; ties go to the earlier (simpler, then older) model
       const ChannelNoise c = constant_noise(residual, sums);
-      const ChannelNoise r = relative_noise(fitted, residual);
-      const ChannelNoise a = two_term_noise(NoiseModelKind::Affine, fitted, residual, c, r, sums);
-      const ChannelNoise d = two_term_noise(NoiseModelKind::Additive, fitted, residual, c, r, sums);
+      const ChannelNoise r = relative_noise(fitted, residual, sums);
       n = c;
       if (r.bic < n.bic) n = r;
-      if (a.bic < n.bic) n = a;
-      if (d.bic < n.bic) n = d;
+      // A two-term form is estimated in full only where it may beat the best so far.
+      const auto a = two_term_noise(NoiseModelKind::Affine, fitted, residual, c, r, sums, n.bic);
+      if (a && a->bic < n.bic) n = *a;
+      const auto d = two_term_noise(NoiseModelKind::Additive, fitted, residual, c, r, sums, n.bic);
+      if (d && d->bic < n.bic) n = *d;
     }
   }
   const double f = std::sqrt(std::max(dof_factor, 1.0));

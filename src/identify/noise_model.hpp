@@ -39,9 +39,11 @@ double noise_sigma(const ChannelNoise& n, double y);
 // Estimates the noise of one channel from its fitted values and residuals (equal length, >= 2).
 // kind Auto fits all four and keeps the smallest BIC. dof_factor >= 1 scales the variances to
 // correct the residuals' shrinkage by the fitted parameters (n / (n - k) for k parameters).
-ChannelNoise estimate_channel_noise(const std::vector<double>& fitted,
-                                    const std::vector<double>& residual, NoiseModelKind kind,
-                                    double dof_factor = 1.0);
+// Auto estimates a two-term form in full only where it may beat the best BIC before it
+// (docs/physics.md §8.10): the choice and the estimate are those of estimating all four.
+// Takes the vectors by value: a caller that moves them in saves their copies.
+ChannelNoise estimate_channel_noise(std::vector<double> fitted, std::vector<double> residual,
+                                    NoiseModelKind kind, double dof_factor = 1.0);
 
 // "constant", "relative", "affine", "additive", "columns", "auto".
 const char* noise_model_name(NoiseModelKind kind);

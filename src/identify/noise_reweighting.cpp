@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <frictionid/fit_error.hpp>
 
@@ -91,30 +92,33 @@ NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, 
       const int ci = static_cast<int>(c);
       auto& sigma = out.sigma[ci];
       if (!noise_estimated(s, data, c)) return;
+      // The channel's rows: fitted values y and residuals e, and the largest |y|.
       std::vector<double> y, e;
       y.reserve(cs.rows);
       e.reserve(cs.rows);
+      double peak = 0.0;
       for (std::size_t i = 0; i < data.rows(); ++i)
         if (data.present[ci][i]) {
           y.push_back(fitted[ci][i]);
           e.push_back(fitted[ci][i] - data.value[ci][i]);
+          peak = std::max(peak, std::fabs(fitted[ci][i]));
         }
+      const std::size_t n = y.size();
       const NoiseModelKind kind =
           s.noise_model == NoiseModelKind::Auto ? NoiseModelKind::Auto : s.noise_model;
-      noise[ci] = estimate_channel_noise(y, e, kind, dof_factor);
+      noise[ci] = estimate_channel_noise(std::move(y), std::move(e), kind, dof_factor);
       step.parameters = noise_parameters(noise[ci].kind);
       // No sigma below rounding: noise-free data would otherwise divide by zero.
-      double peak = 0.0;
-      for (double v : y) peak = std::max(peak, std::fabs(v));
       const double floor = std::max(1e-15 * peak, 1e-300);
       sigma.assign(data.rows(), std::nan(""));
-      double largest = 0.0;
+      double largest = 0.0, y2 = 0.0;
       LogSum log_sigma;
       for (std::size_t i = 0; i < data.rows(); ++i)
         if (data.present[ci][i]) {
           sigma[i] = std::max(noise_sigma(noise[ci], fitted[ci][i]), floor);
           log_sigma.add(sigma[i]);
           largest = std::max(largest, sigma[i]);
+          if (peak > 0.0) y2 += (fitted[ci][i] / peak) * (fitted[ci][i] / peak);
         }
       step.log_det = 2.0 * log_sigma.sum();
       // The channel's representative sigma: the RMS over its rows, relative to the largest.
@@ -128,10 +132,7 @@ NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, 
                                noise[ci].floor, noise[ci].problem};
       // Relative change of the variance function, measured at the channel's typical fitted
       // value (its RMS), where both of the affine model's terms show.
-      double y2 = 0.0;
-      if (peak > 0.0)
-        for (double v : y) y2 += (v / peak) * (v / peak);
-      const double typical = peak * std::sqrt(y2 / static_cast<double>(y.size()));
+      const double typical = peak * std::sqrt(y2 / static_cast<double>(n));
       const double now = noise_sigma(noise[ci], typical),
                    before = noise_sigma(previous[ci], typical);
       step.change = noise[ci].kind != previous[ci].kind

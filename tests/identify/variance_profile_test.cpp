@@ -47,6 +47,55 @@ TEST(VarianceProfile, TheSearchFindsTheInteriorMaximumAndReportsItsLikelihood) {
   }
 }
 
+// give_up_above: a search that ends at or below it is the search without it, to the bit; one
+// that cannot reach it is left (given_up), and what it finds is not reported.
+TEST(VarianceProfile, ABoundToBeatLeavesOnlySearchesThatCannotReachIt) {
+  for (TwoTermForm form : {TwoTermForm::Affine, TwoTermForm::Additive}) {
+    const Sample s = sample(form, 0.002, 0.02, 400, 3);
+    const TwoTermMaximum m = two_term_maximum(form, s.y, s.e);
+    ASSERT_TRUE(m.found);
+    EXPECT_EQ(m.given_up, 0);
+    const TwoTermRange range = two_term_range(form, s.y, s.e);
+    for (double above : {0.0, 1.0, 100.0}) {
+      const TwoTermMaximum b = two_term_maximum(form, s.y, s.e, range, m.neg2_loglik + above);
+      EXPECT_EQ(b.given_up, 0);
+      EXPECT_EQ(b.found, m.found);
+      EXPECT_EQ(b.s_abs, m.s_abs);
+      EXPECT_EQ(b.s_rel, m.s_rel);
+      EXPECT_EQ(b.neg2_loglik, m.neg2_loglik);
+      EXPECT_EQ(b.converged, m.converged);
+    }
+    const TwoTermMaximum below = two_term_maximum(form, s.y, s.e, range, m.neg2_loglik - 50.0);
+    EXPECT_GT(below.given_up, 0);
+    EXPECT_FALSE(below.found);
+  }
+}
+
+// The grid four points at a time (AVX2, where there is) and one at a time place the same starts:
+// the same bits, also with a row whose fitted value is not finite (one log at a time there).
+TEST(VarianceProfile, TheGridInVectorLanesGivesTheSameMaximum) {
+  for (TwoTermForm form : {TwoTermForm::Affine, TwoTermForm::Additive})
+    for (std::size_t n : {30u, 400u, 9000u})
+      for (bool nan_row : {false, true}) {
+        Sample s = sample(form, 0.002, 0.02, n, 7 + n);
+        if (nan_row) s.y[n / 2] = std::nan("");
+        TwoTermMaximum m[2];
+        for (int lanes = 0; lanes < 2; ++lanes) {
+          allow_profile_lanes(lanes == 1);
+          m[lanes] = two_term_maximum(form, s.y, s.e);
+        }
+        allow_profile_lanes(true);
+        EXPECT_EQ(m[0].found, m[1].found);
+        EXPECT_EQ(m[0].s_abs, m[1].s_abs);
+        EXPECT_EQ(m[0].s_rel, m[1].s_rel);
+        EXPECT_EQ(m[0].converged, m[1].converged);
+        if (!nan_row) {
+          EXPECT_TRUE(m[0].found) << n;
+          EXPECT_EQ(m[0].neg2_loglik, m[1].neg2_loglik);
+        }
+      }
+}
+
 TEST(VarianceProfile, NoResidualsOrNoFittedValuesLeaveOnlyTheBounds) {
   const std::vector<double> y = {0.5, -1.0, 0.2}, zeros = {0.0, 0.0, 0.0};
   EXPECT_FALSE(two_term_maximum(TwoTermForm::Affine, y, zeros).found);
