@@ -6,6 +6,7 @@
 
 #include <frictionid/fitter.hpp>
 #include <frictionid/io/dataset_csv.hpp>
+#include "app/data_input.hpp"
 #include "app/fit_request.hpp"
 #include "app/option_parsers.hpp"
 
@@ -17,12 +18,12 @@ namespace {
 // file's size and time are those of the plan, else a new hash. A file that changes while it is
 // read is an error (the run is fitted again next time).
 Dataset read_run_file(const BatchRun& run, FileFingerprint* read) {
-  if (!read) return load_dataset_csv(run.path, run.options.columns);
+  if (!read) return load_fit_data(run.options, run.path).data;
   const FileFingerprint before = stat_file(run.path);
   const bool as_planned = before.size == run.input.size && before.mtime_ns == run.input.mtime_ns &&
                           !run.input.sha256.empty();
   *read = as_planned ? run.input : fingerprint_file(run.path);
-  Dataset data = load_dataset_csv(run.path, run.options.columns);
+  Dataset data = load_fit_data(run.options, run.path).data;
   const FileFingerprint after = stat_file(run.path);
   if (after.size != before.size || after.mtime_ns != before.mtime_ns ||
       (!as_planned && after.size != read->size))
@@ -49,8 +50,15 @@ SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer
   auto covariates = dataset_covariates(data);
   covariates.insert(covariates.end(), run.covariates.begin(), run.covariates.end());
   try {
+    const auto kept = kept_columns(data, run.options.keep);
+    covariates.insert(covariates.end(), kept.begin(), kept.end());
+  } catch (const std::exception& e) {
+    return failed_summary_row(run.label, data.rows(), e.what(), std::move(covariates));
+  }
+  try {
     FitSettings s = fit_settings(run.options, run.options.model);
     s.threads = threads;
+    check_rolling_direction(s, data);
     std::optional<FitResult> warm_fit;
     if (warm) warm_fit = fit_warm(s, *warm, data, observer);
     const FitResult r = warm_fit ? std::move(*warm_fit) : Fitter(s).fit(data, observer);

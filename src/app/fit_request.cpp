@@ -10,6 +10,7 @@
 #include <frictionid/fitter.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/pressure_law_reader.hpp>
+#include "app/data_input.hpp"
 #include "app/option_parsers.hpp"
 #include "identify/fitted_run.hpp"
 
@@ -175,6 +176,7 @@ FitSettings fit_settings(const FitRequest& o, const std::string& model, bool len
 }
 
 FitResult fit_dataset(const FitSettings& s, const Dataset& data, FitObserver* observer) {
+  check_rolling_direction(s, data);
   try {
     return Fitter(s).fit(data, observer);
   } catch (const std::invalid_argument& e) {
@@ -184,6 +186,7 @@ FitResult fit_dataset(const FitSettings& s, const Dataset& data, FitObserver* ob
 
 FitResult fit_dataset(const FitSettings& s, const Dataset& data, FitObserver* observer,
                       RowSigmas& sigma) {
+  check_rolling_direction(s, data);
   FittedRun run;
   try {
     run = fit_keeping_problem(s, data, observer);  // Fitter::fit's result, and its problem

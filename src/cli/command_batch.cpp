@@ -23,6 +23,7 @@
 #include "app/batch_runs.hpp"
 #include "app/batch_shared_fit.hpp"
 #include "app/batch_warm_start.hpp"
+#include "app/data_input.hpp"
 #include "app/fit_request.hpp"
 #include "app/report_provenance.hpp"
 #include "app/request_json.hpp"
@@ -58,6 +59,12 @@ Provenance run_provenance(const BatchRequest& o, const BatchRun& run) {
   p.command_line = o.fit.command_line;
   p.options = fit_request_json(run.options);
   p.inputs.push_back(InputFile{run.path, run.input.size, run.input.sha256});
+  try {
+    p.data_form = fit_data_form(run.options, run.path);
+  } catch (const std::exception&) {
+    // The run's file was read for its fit; one that cannot be looked at again is named
+    // without its form.
+  }
   return p;
 }
 

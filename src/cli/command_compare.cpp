@@ -6,6 +6,7 @@
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/model_comparison.hpp>
+#include "app/data_input.hpp"
 #include "app/fit_request.hpp"
 #include "app/report_provenance.hpp"
 #include "cli/commands.hpp"
@@ -35,7 +36,9 @@ int run_compare(const app::CompareRequest& o) {
   const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait,
                                  say_waiting_for(o.fit.report));
   check_report_directory_replaceable(o.fit.report);
-  const Dataset data = load_dataset_csv(o.fit.data, o.fit.columns);
+  const LoadedDataset loaded = app::load_fit_data(o.fit, o.fit.data);
+  const Dataset& data = loaded.data;
+  for (const FitSettings& s : settings) app::check_rolling_direction(s, data);
   ModelComparison c;
   try {
     TerminalObserver observer(interrupted, show_progress(o.fit.progress));
@@ -48,6 +51,7 @@ int run_compare(const app::CompareRequest& o) {
     throw InputError(o.fit.data, 0, 0, e.what());
   }
   Provenance provenance = app::report_provenance(o.fit, {o.fit.data});
+  provenance.data_form = loaded.form;
   provenance.options["models"] = o.models;
   const auto files = write_compare_report(o.fit.report, c, data, provenance);
   std::printf("%-10s %14s %14s %10s\n", "model", "chi2", "AIC", "dAIC");

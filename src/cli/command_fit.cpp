@@ -10,6 +10,7 @@
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/report_writer.hpp>
+#include "app/data_input.hpp"
 #include "app/fit_request.hpp"
 #include "app/report_provenance.hpp"
 #include "cli/commands.hpp"
@@ -35,13 +36,15 @@ int run_fit(const app::FitRequest& o) {
   const ReportDirectoryLock lock(o.report, /*wait=*/!o.no_wait, say_waiting_for(o.report));
   check_report_directory_replaceable(o.report);
   const auto t_read = std::chrono::steady_clock::now();
-  const Dataset data = load_dataset_csv(o.data, o.columns);
+  const LoadedDataset loaded = app::load_fit_data(o, o.data);
+  const Dataset& data = loaded.data;
   const double read_s = seconds(std::chrono::steady_clock::now() - t_read).count();
   ReportOptions report_options;
   report_options.plot_x = o.plot_x;
   report_options.color_by = o.color_by;
   report_options.threads = o.threads;
   report_options.provenance = app::report_provenance(o, {o.data});
+  report_options.provenance.data_form = loaded.form;
   try {
     check_report_columns(data, report_options);  // before the fit, not after it
   } catch (const std::invalid_argument& e) {
