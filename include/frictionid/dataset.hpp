@@ -28,6 +28,10 @@ struct Dataset {
 
   // Kinematics and load, SI units.
   std::vector<double> v_x, v_y, omega, N, R;
+  // The sign the pressure tilt (h, h_y) takes on each row: the wheel form's tilt follows the
+  // rolling direction, sgn of the wheel's spin (docs/physics.md §9.2). Empty: +1 on every row,
+  // the native form's fixed +x.
+  std::vector<double> tilt_sign;
 
   // Measured channels. present[c][i] != 0 when row i measures channel c; value is then finite.
   std::array<std::vector<double>, kChannelCount> value;
@@ -42,6 +46,7 @@ struct Dataset {
   std::vector<std::vector<std::string>> extra_values;
 
   std::size_t rows() const { return v_x.size(); }
+  double tilt_sign_at(std::size_t i) const { return tilt_sign.empty() ? 1.0 : tilt_sign[i]; }
   bool has_channel(Channel c) const {
     for (auto p : present[static_cast<int>(c)])
       if (p) return true;

@@ -123,17 +123,24 @@ class ModelEvaluator {
                  params[kM],
                  params[kP0]};
       products_ = model::approximant_products(approx_, shape_);
+      turned_ = approx_;
+      turned_.h = -approx_.h;
+      turned_products_ = model::approximant_products(turned_, shape_);
     }
   }
 
   model::Resultants<T> operator()(const model::Kinematics& k) const {
+    // A row whose tilt is turned (docs/physics.md §9.2) sees -h.
+    const bool turned = k.tilt_sign < 0.0;
     switch (kind_) {
       case ModelKind::Seed:
-        return model::approximant_resultants(model::ApproximantForm::Seed, approx_, products_,
-                                             shape_, k);
+        return model::approximant_resultants(model::ApproximantForm::Seed,
+                                             turned ? turned_ : approx_,
+                                             turned ? turned_products_ : products_, shape_, k);
       case ModelKind::Corrected:
-        return model::approximant_resultants(model::ApproximantForm::Corrected, approx_, products_,
-                                             shape_, k);
+        return model::approximant_resultants(model::ApproximantForm::Corrected,
+                                             turned ? turned_ : approx_,
+                                             turned ? turned_products_ : products_, shape_, k);
       case ModelKind::Exact:
         return spot_ ? (*spot_)(k) : (*exact_)(k);
     }
@@ -161,6 +168,8 @@ class ModelEvaluator {
   model::ApproximantShape<double> shape_{};
   model::ApproximantParams<T> approx_{};
   model::ApproximantProducts<T> products_{};
+  model::ApproximantParams<T> turned_{};  // h negated, for rows whose tilt is turned
+  model::ApproximantProducts<T> turned_products_{};
 };
 
 }  // namespace frictionid

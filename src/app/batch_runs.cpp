@@ -343,6 +343,7 @@ Dataset select_rows(const Dataset& d, const std::vector<std::size_t>& rows) {
   take(d.omega, out.omega);
   take(d.N, out.N);
   take(d.R, out.R);
+  take(d.tilt_sign, out.tilt_sign);
   for (int c = 0; c < kChannelCount; ++c) {
     take(d.value[c], out.value[c]);
     take(d.present[c], out.present[c]);

@@ -58,7 +58,8 @@ std::size_t evaluate_file(const EvalRequest& r) {
     out.append(text, pos, eol - pos);
     pos = eol + 1;
     for (const auto& column : d.extra_values) (out += ',') += csv_cell(column[i]);
-    const auto p = eval(model::Kinematics{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]});
+    const auto p =
+        eval(model::Kinematics{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i], d.tilt_sign_at(i)});
     fmt::format_to(std::back_inserter(out), ",{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", p.T_x,
                    p.T_y, p.M_z, p.M_roll, p.N);
   }

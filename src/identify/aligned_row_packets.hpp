@@ -135,8 +135,9 @@ PacketParams<N> packet_params(model::ApproximantForm form, const model::Approxim
 }
 
 // Whether row i goes in a packet: slip along x and not at rest (slip_geometry's aligned case).
+// A row whose tilt is turned (tilt_sign -1) takes the scalar path.
 inline bool packet_row(const Dataset& d, std::size_t i) {
-  return d.v_y[i] == 0.0 && !(d.v_x[i] == 0.0 && d.omega[i] == 0.0);
+  return d.v_y[i] == 0.0 && !(d.v_x[i] == 0.0 && d.omega[i] == 0.0) && d.tilt_sign_at(i) > 0.0;
 }
 
 // What a packet's residuals need of its four rows (all packet_row), apart from the parameters:

@@ -19,6 +19,7 @@ Dataset Dataset::subsample(std::size_t max_rows) const {
   take(omega, sub.omega);
   take(N, sub.N);
   take(R, sub.R);
+  take(tilt_sign, sub.tilt_sign);
   for (int c = 0; c < kChannelCount; ++c) {
     take(value[c], sub.value[c]);
     take(present[c], sub.present[c]);

@@ -160,7 +160,7 @@ std::string first_nonfinite_row(const LocalProblem& p, const ParamVector& x) {
   const ModelEvaluator<double> model(s.model, s.law, x.data(), pass_table(p, x, false),
                                      p.quadrature, s.contact);
   for (std::size_t i = p.rows.begin; i < p.rows.end; ++i) {
-    const auto r = model({d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]});
+    const auto r = model({d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i], d.tilt_sign_at(i)});
     const double pred[kChannelCount] = {r.T_x, r.T_y, r.M_z, r.M_roll, r.M_tilt};
     for (Channel c : p.rows.channels) {
       const int ci = static_cast<int>(c);

@@ -87,7 +87,8 @@ void add_predictions(const LocalProblem& lp, const ParamVector& x, FitResult& re
   for_each_chunk(chunk_count(data.rows()), lp.threads, [&](std::size_t chunk) {
     const std::size_t end = std::min(data.rows(), (chunk + 1) * kChunkRows);
     for (std::size_t i = chunk * kChunkRows; i < end; ++i) {
-      const model::Kinematics kin{data.v_x[i], data.v_y[i], data.omega[i], data.N[i], data.R[i]};
+      const model::Kinematics kin{data.v_x[i], data.v_y[i], data.omega[i],
+                                  data.N[i],   data.R[i],   data.tilt_sign_at(i)};
       res.eps[i] = model::slip_geometry(kin).eps;
       const auto pr = model(kin);
       const double pred[kChannelCount] = {pr.T_x, pr.T_y, pr.M_z, pr.M_roll, pr.M_tilt};

@@ -27,7 +27,7 @@ std::array<std::vector<double>, kChannelCount> predictions(const LocalProblem& l
   for_each_chunk(chunk_count(d.rows()), lp.threads, [&](std::size_t c) {
     const std::size_t end = std::min(d.rows(), (c + 1) * kChunkRows);
     for (std::size_t i = c * kChunkRows; i < end; ++i) {
-      const auto r = model({d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]});
+      const auto r = model({d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i], d.tilt_sign_at(i)});
       out[0][i] = r.T_x;
       out[1][i] = r.T_y;
       out[2][i] = r.M_z;

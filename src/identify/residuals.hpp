@@ -83,7 +83,7 @@ bool row_residuals(const ResidualRows& rows, const ModelEvaluator<T>& model, Los
   using std::isfinite;
   const Dataset& d = *rows.data;
   const std::size_t nc = rows.channels.size();
-  const model::Kinematics k{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i]};
+  const model::Kinematics k{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i], d.tilt_sign_at(i)};
   // The weights first, all divisions together: they overlap each other and the model, where
   // one per channel between the Jet operations would each stall them.
   double w[kChannelCount];

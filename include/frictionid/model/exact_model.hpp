@@ -78,6 +78,9 @@ class ExactModel {
         moments_(law_moments(law_)),
         table_(std::move(table)),
         rule_(rule ? rule : &radial_rule()) {
+    turned_ = p_;
+    turned_.h = -p_.h;
+    turned_.h_y = -p_.h_y;
     if (table_ && (table_->law().kind != law_.kind ||
                    ((law_.kind == PressureKind::Power || law_.kind == PressureKind::Annulus) &&
                     table_->law().n != value_of(law_.n)) ||
@@ -88,6 +91,8 @@ class ExactModel {
   const LawMoments<T>& moments() const { return moments_; }
 
   Resultants<T> operator()(const Kinematics& k) const {
+    // A row whose tilt is turned (docs/physics.md §9.2) sees -h and -h_y.
+    const FrictionParams<T>& p = k.tilt_sign < 0.0 ? turned_ : p_;
     const SlipGeometry g = slip_geometry(k);
     // c = N/(2 pi R^2 m1) is the pressure scale; forces come in f c R^2, torques in f c R^3.
     const T force_scale = p_.f * k.N / (T(2 * M_PI) * moments_[1]);
@@ -97,19 +102,19 @@ class ExactModel {
       r.T_x = r.T_y = r.M_z = T(0);  // pure rolling: no slip anywhere, no friction to report
     } else if (use_hertz_fast_path(k, g)) {
       const AlignedIntegrals a = hertz_aligned_integrals(g.eps);
-      r = combine_ring_integrals(p_, g, a.P, a.Q, a.J - a.Q, 0.0, 0.0, 0.0, force_scale,
+      r = combine_ring_integrals(p, g, a.P, a.Q, a.J - a.Q, 0.0, 0.0, 0.0, force_scale,
                                  torque_scale);
     } else if (use_uniform_fast_path(k, g)) {
       const AlignedIntegrals a = uniform_aligned_integrals(g.eps);
-      r = combine_ring_integrals(p_, g, a.P, 0.0, a.J, 0.0, 0.0, 0.0, force_scale, torque_scale);
+      r = combine_ring_integrals(p, g, a.P, 0.0, a.J, 0.0, 0.0, 0.0, force_scale, torque_scale);
     } else {
       const RingIntegrals<T> in =
           table_ ? table_integrals(g.eps) : ring_integrals(law_, moments_, g.eps, *rule_);
-      r = combine_ring_integrals(p_, g, in.P, in.Q, in.S, in.U, in.V, in.X, force_scale,
+      r = combine_ring_integrals(p, g, in.P, in.Q, in.S, in.U, in.V, in.X, force_scale,
                                  torque_scale);
     }
-    r.M_roll = p_.h * k.N * k.R * moments_[3] / (T(2) * moments_[1]);
-    if (p_.tilt_y) r.M_tilt = p_.h_y * k.N * k.R * moments_[3] / (T(2) * moments_[1]);
+    r.M_roll = p.h * k.N * k.R * moments_[3] / (T(2) * moments_[1]);
+    if (p.tilt_y) r.M_tilt = p.h_y * k.N * k.R * moments_[3] / (T(2) * moments_[1]);
     r.N = T(k.N);
     return r;
   }
@@ -149,7 +154,7 @@ class ExactModel {
     return {T(v[0]), T(v[1]), T(v[2]), T(v[3]), T(v[4]), T(v[5])};
   }
 
-  FrictionParams<T> p_;
+  FrictionParams<T> p_, turned_;  // turned_: h and h_y negated
   PressureLaw<T> law_;
   LawMoments<T> moments_;
   std::shared_ptr<const RingIntegralTable> table_;

@@ -11,6 +11,9 @@ namespace frictionid::model {
 // Kinematics are data, never identified, so they stay double for every scalar type.
 struct Kinematics {
   double v_x = 0.0, v_y = 0.0, omega = 0.0, N = 1.0, R = 1.0;
+  // The sign of the pressure tilt on this row: -1 turns sigma0 (1 + h x + h_y y) into
+  // sigma0 (1 - h x - h_y y), as when the wheel rolls backwards (docs/physics.md §9.2).
+  double tilt_sign = 1.0;
 };
 
 // Resistance convention (docs/physics.md §1): T = -∫tau dS, M_z = -∫(r x tau).e3 dS,

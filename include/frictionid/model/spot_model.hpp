@@ -114,36 +114,8 @@ class SpotModel {
 
   Resultants<T> operator()(const Kinematics& k) const {
     if (circle_) return (*circle_)(k);
-    const SpotMoments<T>& A = moments_;
-    // c R^2 = N/(A0 + h Ax + h_y Ay): the pressure scale that carries the load N.
-    const T load_area = A.A0 + p_.h * A.Ax + p_.h_y * A.Ay;
-    const T scale = T(k.N) / load_area;  // c R^2
-    Resultants<T> r;
-    r.N = T(k.N);
-    r.M_roll = scale * k.R * (A.Ax + p_.h * A.Axx + p_.h_y * A.Axy);
-    r.M_tilt = scale * k.R * (A.Ay + p_.h * A.Axy + p_.h_y * A.Ayy);
-    const bool at_rest = k.v_x == 0.0 && k.v_y == 0.0 && k.omega == 0.0;
-    if (at_rest) {
-      r.T_x = r.T_y = r.M_z = T(0);
-      return r;
-    }
-    if (k.omega == 0.0) {
-      // Pure sliding: the slip direction is v/|v| everywhere (docs/physics.md §9.5).
-      const double v = std::hypot(k.v_x, k.v_y), ux = k.v_x / v, uy = k.v_y / v;
-      r.T_x = p_.f * k.N * ux;
-      r.T_y = p_.f * p_.kappa * k.N * uy;
-      r.M_z = p_.f * (p_.kappa * uy * r.M_roll - ux * r.M_tilt);
-      return r;
-    }
-    const auto [cx, cy] = rotation_centre(k.v_x, k.v_y, k.omega, k.R);
-    const SpotIntegralsT<T> I = integrals(cx, cy);
-    const double s = k.omega > 0.0 ? 1.0 : -1.0;
-    const T force = p_.f * scale * s, torque = force * k.R;
-    r.T_x = force * (I.ex[0] + p_.h * I.ex[1] + p_.h_y * I.ex[2]);
-    r.T_y = force * p_.kappa * (I.ey[0] + p_.h * I.ey[1] + p_.h_y * I.ey[2]);
-    r.M_z = torque * (p_.kappa * (I.x_ey[0] + p_.h * I.x_ey[1] + p_.h_y * I.x_ey[2]) -
-                      (I.y_ex[0] + p_.h * I.y_ex[1] + p_.h_y * I.y_ex[2]));
-    return r;
+    if (k.tilt_sign < 0.0) return resultants(k, -p_.h, -p_.h_y);
+    return resultants(k, p_.h, p_.h_y);
   }
 
   // The integrals for the centre of rotation at (cx, cy) (units of R), with q- and n-slopes.
@@ -165,6 +137,39 @@ class SpotModel {
   }
 
  private:
+  Resultants<T> resultants(const Kinematics& k, const T& h, const T& h_y) const {
+    const SpotMoments<T>& A = moments_;
+    // c R^2 = N/(A0 + h Ax + h_y Ay): the pressure scale that carries the load N.
+    const T load_area = A.A0 + h * A.Ax + h_y * A.Ay;
+    const T scale = T(k.N) / load_area;  // c R^2
+    Resultants<T> r;
+    r.N = T(k.N);
+    r.M_roll = scale * k.R * (A.Ax + h * A.Axx + h_y * A.Axy);
+    r.M_tilt = scale * k.R * (A.Ay + h * A.Axy + h_y * A.Ayy);
+    const bool at_rest = k.v_x == 0.0 && k.v_y == 0.0 && k.omega == 0.0;
+    if (at_rest) {
+      r.T_x = r.T_y = r.M_z = T(0);
+      return r;
+    }
+    if (k.omega == 0.0) {
+      // Pure sliding: the slip direction is v/|v| everywhere (docs/physics.md §9.5).
+      const double v = std::hypot(k.v_x, k.v_y), ux = k.v_x / v, uy = k.v_y / v;
+      r.T_x = p_.f * k.N * ux;
+      r.T_y = p_.f * p_.kappa * k.N * uy;
+      r.M_z = p_.f * (p_.kappa * uy * r.M_roll - ux * r.M_tilt);
+      return r;
+    }
+    const auto [cx, cy] = rotation_centre(k.v_x, k.v_y, k.omega, k.R);
+    const SpotIntegralsT<T> I = integrals(cx, cy);
+    const double s = k.omega > 0.0 ? 1.0 : -1.0;
+    const T force = p_.f * scale * s, torque = force * k.R;
+    r.T_x = force * (I.ex[0] + h * I.ex[1] + h_y * I.ex[2]);
+    r.T_y = force * p_.kappa * (I.ey[0] + h * I.ey[1] + h_y * I.ey[2]);
+    r.M_z = torque * (p_.kappa * (I.x_ey[0] + h * I.x_ey[1] + h_y * I.x_ey[2]) -
+                      (I.y_ex[0] + h * I.y_ex[1] + h_y * I.y_ex[2]));
+    return r;
+  }
+
   static PressureLaw<double> value_law(const PressureLaw<T>& law) {
     PressureLaw<double> d;
     d.kind = law.kind;
