@@ -182,8 +182,29 @@ std::string data_form_text(const DataForm& f) {
   return out + ", the other columns SI";
 }
 
+namespace {
+
+// The wheel form's options say nothing about a native file: given for one, they are a mistake
+// (a file read in the wrong form), not something to ignore.
+void check_native_options(const std::string& path, const Choice& c,
+                          const DatasetReadOptions& options) {
+  if (c.wheel) return;
+  const std::string why =
+      " applies to the wheel form, and this file is read in the native form (" + c.reason + ")";
+  if (options.axes == Axes::Sae)
+    throw InputError(path, 0, 0,
+                     "--axes sae" + why +
+                         ", whose columns are the contact's own (docs/design.md "
+                         "§4.1); use --input-form wheel for a wheel-form file");
+  if (options.contact_radius)
+    throw InputError(path, 0, 0, "--contact-radius" + why + ", whose R column gives the radius");
+}
+
+}  // namespace
+
 LoadedDataset read_dataset(const std::string& path, const DatasetReadOptions& options) {
   const Choice c = choose(path, options);
+  check_native_options(path, c, options);
   LoadedDataset out;
   if (c.tydex) {
     out.data = load_tydex(path, c.wheel_options, &out.form);
@@ -203,6 +224,7 @@ LoadedDataset read_dataset(const std::string& path, const DatasetReadOptions& op
 
 DataForm inspect_dataset_form(const std::string& path, const DatasetReadOptions& options) {
   const Choice c = choose(path, options);
+  check_native_options(path, c, options);
   if (c.tydex) return read_dataset(path, options).form;
   DataForm f;
   f.form = c.wheel ? "wheel" : "native";

@@ -151,6 +151,17 @@ TEST_F(DatasetReader, TydexIsRecognisedByItsNameOrItsFirstLine) {
   EXPECT_THROW(read_dataset(write("rig2.tdx", content), o), InputError);
 }
 
+TEST_F(DatasetReader, WheelFormOptionsForANativeFileAreAnError) {
+  const std::string path = write("n.csv", native_csv());
+  DatasetReadOptions o;
+  o.axes = Axes::Sae;
+  EXPECT_THROW(read_dataset(path, o), InputError);
+  o.axes = Axes::Iso;
+  o.contact_radius = 0.05;
+  EXPECT_THROW(read_dataset(path, o), InputError);
+  EXPECT_THROW(inspect_dataset_form(path, o), InputError);
+}
+
 TEST_F(DatasetReader, AColumnMapNameOfNeitherFormIsAnError) {
   DatasetReadOptions o;
   o.columns.canonical_to_header = {{"speed", "V"}};
