@@ -71,6 +71,7 @@ struct SpotIntegrals {
 struct SpotRules {
   const std::vector<QuadratureNode>* radial = &radial_rule();
   const std::vector<QuadratureNode>* angular = &radial_rule();
+  bool fine_maps = false;  // the angular rule on a map's narrow pieces too (a reference)
 };
 
 class SpotIntegrator {
@@ -108,8 +109,11 @@ class SpotIntegrator {
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       const double a = cuts[k], b = cuts[k + 1], len = b - a;
       if (!(len > 0.0)) continue;
-      const auto& rule = *rules_.angular;
-      for (const auto& node : rule) {
+      if (kind_ == SpotKind::Map && len < kNarrowPiece && !rules_.fine_maps) {
+        map_piece(CX, CY, a, b, ray, out);
+        continue;
+      }
+      for (const auto& node : *rules_.angular) {
         const double phi = a + len * node.from_left;
         const double c = std::cos(phi), s = std::sin(phi);
         const std::array<double, 6> m = ray_moments(CX, CY, c, s, ray);
@@ -124,6 +128,51 @@ class SpotIntegrator {
     std::vector<double> cuts;  // radial split points, ascending
   };
 
+  // A map's pieces between the directions of its grid nodes are many and narrow, and the
+  // integrand is analytic on each, but the distance at which a ray crosses a grid line, d/sin,
+  // has its pole in the direction along the line: an axis direction, where a line passing
+  // close to the centre of rotation puts it next to narrow pieces. Cut each piece geometrically
+  // towards the nearest axis until every part is at least its own width away from it; 16 Gauss
+  // points then converge like 5.8^-32, at a third of the tanh-sinh rule's cost.
+  void map_piece(double CX, double CY, double a, double b, Ray& ray, SpotIntegrals& out) const {
+    const double mid = 0.5 * (a + b);
+    const double axis = std::round(mid / (0.5 * M_PI)) * (0.5 * M_PI);
+    auto integrate = [&](double from, double to) {
+      const double len = to - from;
+      for (const auto& node : narrow_piece_rule()) {
+        const double phi = from + len * node.from_left;
+        const double c = std::cos(phi), s = std::sin(phi);
+        accumulate(out, node.weight * len, c, s, ray_moments(CX, CY, c, s, ray));
+      }
+    };
+    if (axis == a || axis == b) {
+      // A piece that starts on an axis sees no line along it: a parallel line is crossed only
+      // beyond the direction of its nearest node, which is a cut.
+      integrate(a, b);
+    } else if (axis < a) {  // grade upwards from a
+      double from = a;
+      while (from < b) {
+        const double to = std::min(b, axis + 2.0 * (from - axis));
+        integrate(from, to);
+        from = to;
+      }
+    } else if (axis > b) {  // grade downwards from b
+      double to = b;
+      while (to > a) {
+        const double from = std::max(a, axis - 2.0 * (axis - to));
+        integrate(from, to);
+        to = from;
+      }
+    } else {
+      integrate(a, b);  // an axis inside: it is one of the cuts, so this does not happen
+    }
+  }
+
+  static constexpr double kNarrowPiece = 0.2;  // radians
+  static const std::vector<QuadratureNode>& narrow_piece_rule() {
+    static const std::vector<QuadratureNode> rule = make_gauss_legendre_rule(16);
+    return rule;
+  }
   static const std::vector<QuadratureNode>& cell_rule() {
     // Along a ray inside one cell of a map, sigma0 is quadratic in r: with r dr and weights of
     // degree <= 2 the integrand has degree <= 5, which 3 Gauss points integrate exactly.
@@ -229,6 +278,8 @@ class SpotIntegrator {
     // that the spot's long axis squeezes: phi = +-pi/2 for q < 1, 0 and pi for q > 1, where
     // its branch points sit atanh(min(q, 1/q)) off the real line. Cut there, and grade the
     // neighbouring pieces to that scale when it is small.
+    if (kind_ == SpotKind::Map)
+      for (double a : {0.0, 0.5 * M_PI, M_PI, 1.5 * M_PI}) marks.push_back(a);
     const double axis = q_ < 1.0 ? 0.5 * M_PI : 0.0;
     const double scale = std::atanh(std::min(q_, 1.0 / q_));
     for (double a : {axis, axis + M_PI}) {
