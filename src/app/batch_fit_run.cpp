@@ -2,6 +2,8 @@
 
 #include <exception>
 #include <optional>
+#include <string>
+#include <vector>
 #include <stdexcept>
 
 #include <frictionid/fitter.hpp>
@@ -31,6 +33,18 @@ Dataset read_run_file(const BatchRun& run, FileFingerprint* read) {
   return data;
 }
 
+// Appends the run's --keep columns to `covariates`; the message when the data lack one, else "".
+std::string add_kept_columns(const Dataset& data, const std::vector<std::string>& keep,
+                             std::vector<Covariate>& covariates) {
+  try {
+    const auto kept = kept_columns(data, keep);
+    covariates.insert(covariates.end(), kept.begin(), kept.end());
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace
 
 SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer,
@@ -49,12 +63,8 @@ SummaryRow fit_batch_run(const BatchRun& run, int threads, FitObserver* observer
   }
   auto covariates = dataset_covariates(data);
   covariates.insert(covariates.end(), run.covariates.begin(), run.covariates.end());
-  try {
-    const auto kept = kept_columns(data, run.options.keep);
-    covariates.insert(covariates.end(), kept.begin(), kept.end());
-  } catch (const std::exception& e) {
-    return failed_summary_row(run.label, data.rows(), e.what(), std::move(covariates));
-  }
+  if (const std::string why = add_kept_columns(data, run.options.keep, covariates); !why.empty())
+    return failed_summary_row(run.label, data.rows(), why, std::move(covariates));
   try {
     FitSettings s = fit_settings(run.options, run.options.model);
     s.threads = threads;
