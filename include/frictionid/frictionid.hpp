@@ -23,9 +23,14 @@
 
 // Files (target frictionid::io).
 #include <frictionid/io/compare_report.hpp>
+#include <frictionid/io/data_form.hpp>
 #include <frictionid/io/dataset_csv.hpp>
+#include <frictionid/io/dataset_reader.hpp>
 #include <frictionid/io/dataset_writer.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/pressure_law_reader.hpp>
 #include <frictionid/io/report_writer.hpp>
 #include <frictionid/io/summary_table.hpp>
+#include <frictionid/io/tydex_reader.hpp>
+#include <frictionid/io/units.hpp>
+#include <frictionid/io/wheel_form.hpp>

@@ -16,7 +16,9 @@
 
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
+#include <frictionid/io/tydex_reader.hpp>
 #include <frictionid/parameters.hpp>
+#include "app/data_input.hpp"
 #include "app/fit_request.hpp"
 #include "app/option_parsers.hpp"
 #include "app/request_json.hpp"
@@ -90,9 +92,14 @@ bool is_manifest(const std::string& path) {
   return std::find(header.begin(), header.end(), "path") != header.end();
 }
 
+// A data file a directory holds: a CSV file, or a TYDEX file (io/tydex_reader.hpp).
+bool is_data_file(const fs::path& p) {
+  return p.extension() == ".csv" || has_tydex_extension(p.string());
+}
+
 std::string stem_of(const std::string& path) {
   const fs::path p(path);
-  return p.extension() == ".csv" ? p.stem().string() : p.filename().string();
+  return is_data_file(p) ? p.stem().string() : p.filename().string();
 }
 
 // Why `path` cannot be read as a batch input file, or "" when it can (a regular file, also
@@ -113,8 +120,8 @@ std::string listing_error(const std::error_code& ec) {
   return ec == std::errc::permission_denied ? "permission denied" : ec.message();
 }
 
-// The *.csv files of a directory, sorted; the ones that cannot be inputs (a FIFO, a device, a
-// loop of links) are left out and named in `skipped`.
+// The *.csv and *.tdx files of a directory, sorted; the ones that cannot be inputs (a FIFO, a
+// device, a loop of links) are left out and named in `skipped`.
 std::vector<std::string> csv_files_in(const std::string& dir, std::vector<std::string>& skipped) {
   std::vector<std::string> out;
   std::error_code ec;
@@ -123,7 +130,7 @@ std::vector<std::string> csv_files_in(const std::string& dir, std::vector<std::s
   for (; it != fs::directory_iterator(); it.increment(ec)) {
     if (ec) throw InputError(dir, 0, 0, "cannot list this directory: " + listing_error(ec));
     const fs::path& p = it->path();
-    if (p.extension() != ".csv") continue;
+    if (!is_data_file(p)) continue;
     const std::string why = not_an_input(p.string());
     if (why.empty())
       out.push_back(p.string());
@@ -149,9 +156,9 @@ std::vector<std::string> expand_input(const std::string& input, std::vector<std:
     skipped.insert(skipped.end(), skipped_here.begin(), skipped_here.end());
     if (files.empty())
       throw InputError(input, 0, 0,
-                       skipped_here.empty()
-                           ? "no *.csv file in this directory"
-                           : "no *.csv file here can be read (" + skipped_here.front() + ")");
+                       skipped_here.empty() ? "no *.csv file (nor *.tdx) in this directory"
+                                            : "no *.csv or *.tdx file here can be read (" +
+                                                  skipped_here.front() + ")");
     return files;
   }
   if (why != "no such file or directory") throw InputError(input, 0, 0, why);
@@ -171,14 +178,15 @@ std::vector<std::string> expand_input(const std::string& input, std::vector<std:
         std::vector<std::string> skipped_here;
         const auto inside = csv_files_in(m, skipped_here);
         if (inside.empty() && skipped_here.empty())
-          skipped_here.push_back(m + ": no *.csv file in this directory");
+          skipped_here.push_back(m + ": no *.csv file (nor *.tdx) in this directory");
         skipped.insert(skipped.end(), skipped_here.begin(), skipped_here.end());
         files.insert(files.end(), inside.begin(), inside.end());
       } else {
         skipped.push_back(m + ": " + reason);
       }
     }
-    if (files.empty()) throw InputError(input, 0, 0, "the pattern matches no CSV file");
+    if (files.empty())
+      throw InputError(input, 0, 0, "the pattern matches no CSV file (nor TYDEX file)");
     return files;
   }
   throw InputError(input, 0, 0, "no such file or directory");
@@ -375,6 +383,14 @@ std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, co
 
   check_names("--group-by", group_columns);
   for (const auto& name : group_columns) check_covariate_name(name, "--group-by");
+  check_names("--keep", o.keep);
+  for (const auto& name : o.keep) {
+    check_covariate_name(name, "--keep");
+    if (std::find(group_columns.begin(), group_columns.end(), name) != group_columns.end())
+      throw InputError("--keep " + name +
+                       ": the column is a --group-by column, which the summary has "
+                       "already");
+  }
   std::vector<BatchRun> runs;
   for (auto& e : entries) {
     // Hashed as a stream: planning memory does not grow with the file.
@@ -385,7 +401,7 @@ std::vector<BatchRun> plan_batch_runs(const std::vector<std::string>& inputs, co
       runs.push_back({e.label, "", e.path, e.options, nullptr, {}, e.covariates, file_key, input});
       continue;
     }
-    auto data = std::make_shared<const Dataset>(load_dataset_csv(e.path, e.options.columns));
+    auto data = std::make_shared<const Dataset>(load_fit_data(e.options, e.path).data);
     std::vector<std::vector<std::string>> columns;
     for (const auto& name : group_columns) columns.push_back(column_text(*data, name, e.path));
     std::map<std::vector<std::string>, std::vector<std::size_t>> groups;

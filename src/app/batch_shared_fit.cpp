@@ -8,6 +8,7 @@
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/joint_fit.hpp>
+#include "app/data_input.hpp"
 #include "app/fit_request.hpp"
 #include "app/option_parsers.hpp"
 #include "io/atomic_file.hpp"
@@ -78,9 +79,9 @@ void write_shared_fit(const std::vector<BatchRun>& runs, const std::vector<Summa
       continue;
     }
     const BatchRun& run = runs[i];
-    data.push_back(
-        std::make_unique<Dataset>(run.file_data ? select_rows(*run.file_data, run.group_rows)
-                                                : load_dataset_csv(run.path, run.options.columns)));
+    data.push_back(std::make_unique<Dataset>(run.file_data
+                                                 ? select_rows(*run.file_data, run.group_rows)
+                                                 : load_fit_data(run.options, run.path).data));
     inputs.push_back(
         {run.label, data.back().get(), fit_settings(run.options, run.options.model, *data.back())});
     index.push_back(i);

@@ -11,6 +11,7 @@
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/pressure_law_reader.hpp>
 #include <frictionid/io/pressure_map_reader.hpp>
+#include "app/data_input.hpp"
 #include "app/model_setup.hpp"
 #include "app/option_parsers.hpp"
 #include "identify/fitted_run.hpp"
@@ -244,6 +245,7 @@ std::vector<std::string> request_input_files(const FitRequest& r) {
 }
 
 FitResult fit_dataset(const FitSettings& s, const Dataset& data, FitObserver* observer) {
+  check_rolling_direction(s, data);
   try {
     return Fitter(s).fit(data, observer);
   } catch (const std::invalid_argument& e) {
@@ -253,6 +255,7 @@ FitResult fit_dataset(const FitSettings& s, const Dataset& data, FitObserver* ob
 
 FitResult fit_dataset(const FitSettings& s, const Dataset& data, FitObserver* observer,
                       RowSigmas& sigma) {
+  check_rolling_direction(s, data);
   FittedRun run;
   try {
     run = fit_keeping_problem(s, data, observer);  // Fitter::fit's result, and its problem

@@ -12,6 +12,7 @@
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/pressure_law_reader.hpp>
 #include <frictionid/io/pressure_map_reader.hpp>
+#include <frictionid/io/wheel_form.hpp>
 #include "io/text.hpp"
 
 namespace frictionid {
@@ -254,7 +255,11 @@ ColumnMap checked_column_map(const std::vector<std::pair<std::string, std::strin
   static const char* const kExpected =
       "canonical=header[,canonical=header...], e.g. v_x=speed,omega=spin";
   ColumnMap map;
-  const auto& canonical_names = dataset_column_names();
+  // The native form's names and the wheel form's (R is in both).
+  std::vector<std::string> canonical_names = dataset_column_names();
+  for (const auto& name : wheel_column_names())
+    if (std::find(canonical_names.begin(), canonical_names.end(), name) == canonical_names.end())
+      canonical_names.push_back(name);
   std::set<std::string> headers;
   for (const auto& [canonical, header] : pairs) {
     if (std::find(canonical_names.begin(), canonical_names.end(), canonical) ==

@@ -2,7 +2,10 @@
 
 namespace frictionid::app {
 
-nlohmann::ordered_json fit_request_json(const FitRequest& r) {
+namespace {
+
+// The options of the fit itself.
+nlohmann::ordered_json fit_options_json(const FitRequest& r) {
   nlohmann::ordered_json bounds = nlohmann::ordered_json::object();
   for (const auto& [name, lohi] : r.bounds) bounds[name] = {lohi.first, lohi.second};
   nlohmann::ordered_json j = {{"model", r.model}, {"pressure", r.pressure}};
@@ -28,6 +31,19 @@ nlohmann::ordered_json fit_request_json(const FitRequest& r) {
   return j;
 }
 
+}  // namespace
+
+nlohmann::ordered_json fit_request_json(const FitRequest& r) {
+  nlohmann::ordered_json j = fit_options_json(r);
+  // How the data are read, where it is not the default: the options (in every report and every
+  // journal key) of a native file read as before stay what they were.
+  if (r.input_form != "auto") j["input_form"] = r.input_form;
+  if (r.axes != "iso") j["axes"] = r.axes;
+  if (r.contact_radius) j["contact_radius"] = *r.contact_radius;
+  if (!r.keep.empty()) j["keep"] = r.keep;
+  return j;
+}
+
 FitRequest fit_request_from_json(const nlohmann::ordered_json& j) {
   FitRequest r;
   r.model = j.at("model").get<std::string>();
@@ -50,6 +66,10 @@ FitRequest fit_request_from_json(const nlohmann::ordered_json& j) {
   r.global_subsample = j.at("global_subsample").get<std::size_t>();
   r.no_global = j.at("no_global").get<bool>();
   r.global_algorithm = j.at("global_algorithm").get<std::string>();
+  r.input_form = j.value("input_form", std::string("auto"));
+  r.axes = j.value("axes", std::string("iso"));
+  if (j.contains("contact_radius")) r.contact_radius = j.at("contact_radius").get<double>();
+  if (j.contains("keep")) r.keep = j.at("keep").get<std::vector<std::string>>();
   return r;
 }
 

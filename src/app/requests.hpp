@@ -95,6 +95,14 @@ struct FitRequest {
   // The command as typed (text::command_line), printed in the reports' provenance; empty from
   // Python. Compare and batch carry theirs here too.
   std::string command_line;
+  // How the data file is read (io/data_form.hpp): its form (auto, native or wheel), the wheel
+  // form's axes (iso or sae) and the contact radius of a wheel-form file without an R column.
+  std::string input_form = "auto";
+  std::string axes = "iso";
+  std::optional<double> contact_radius;
+  // batch: columns of the data (e.g. a tire id, the pressure) whose value in each run goes to
+  // summary.csv beside the covariates.
+  std::vector<std::string> keep;
 };
 
 struct CompareRequest {

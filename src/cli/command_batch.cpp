@@ -23,6 +23,7 @@
 #include "app/batch_runs.hpp"
 #include "app/batch_shared_fit.hpp"
 #include "app/batch_warm_start.hpp"
+#include "app/data_input.hpp"
 #include "app/fit_request.hpp"
 #include "app/option_parsers.hpp"
 #include "app/report_provenance.hpp"
@@ -61,6 +62,12 @@ Provenance run_provenance(const BatchRequest& o, const BatchRun& run) {
   p.inputs.push_back(InputFile{run.path, run.input.size, run.input.sha256});
   // A pressure map, fingerprinted as the report is written.
   for (const auto& file : report_provenance(run.options, {}).inputs) p.inputs.push_back(file);
+  try {
+    p.data_form = fit_data_form(run.options, run.path);
+  } catch (const std::exception&) {
+    // The run's file was read for its fit; one that cannot be looked at again is named
+    // without its form.
+  }
   return p;
 }
 

@@ -7,6 +7,7 @@
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/model_comparison.hpp>
+#include "app/data_input.hpp"
 #include "app/fit_request.hpp"
 #include "app/option_parsers.hpp"
 #include "app/report_provenance.hpp"
@@ -61,9 +62,11 @@ int run_compare(const app::CompareRequest& o) {
   const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait,
                                  say_waiting_for(o.fit.report));
   check_report_directory_replaceable(o.fit.report);
-  const Dataset data = load_dataset_csv(o.fit.data, o.fit.columns);
+  const LoadedDataset loaded = app::load_fit_data(o.fit, o.fit.data);
+  const Dataset& data = loaded.data;
   std::vector<FitSettings> settings;
   for (const auto& v : variants) settings.push_back(app::fit_settings(v, v.model, data, true));
+  for (const FitSettings& s : settings) app::check_rolling_direction(s, data);
   ModelComparison c;
   try {
     TerminalObserver observer(interrupted, show_progress(o.fit.progress));
@@ -81,6 +84,7 @@ int run_compare(const app::CompareRequest& o) {
     for (const auto& file : app::request_input_files(v))
       if (std::find(inputs.begin(), inputs.end(), file) == inputs.end()) inputs.push_back(file);
   Provenance provenance = app::report_provenance(o.fit, inputs);
+  provenance.data_form = loaded.form;
   provenance.options["models"] = o.models;
   if (!on_circle_only) provenance.options["contacts"] = o.contacts;
   const std::vector<std::string> fit_contacts =

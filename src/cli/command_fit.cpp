@@ -12,6 +12,7 @@
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/pressure_map_reader.hpp>
 #include <frictionid/io/report_writer.hpp>
+#include "app/data_input.hpp"
 #include "app/fit_request.hpp"
 #include "app/report_provenance.hpp"
 #include "cli/commands.hpp"
@@ -37,7 +38,8 @@ int run_fit(const app::FitRequest& o) {
   const ReportDirectoryLock lock(o.report, /*wait=*/!o.no_wait, say_waiting_for(o.report));
   check_report_directory_replaceable(o.report);
   const auto t_read = std::chrono::steady_clock::now();
-  const Dataset data = load_dataset_csv(o.data, o.columns);
+  const LoadedDataset loaded = app::load_fit_data(o, o.data);
+  const Dataset& data = loaded.data;
   const double read_s = seconds(std::chrono::steady_clock::now() - t_read).count();
   const FitSettings s = app::fit_settings(o, o.model, data);
   ReportOptions report_options;
@@ -74,6 +76,7 @@ int run_fit(const app::FitRequest& o) {
     return kExitInterrupted;
   }
   report_options.provenance = provenance.get();
+  report_options.provenance.data_form = loaded.form;
   const auto t_write = std::chrono::steady_clock::now();
   const auto files = write_report(o.report, r, data, report_options);
   const double write_s = seconds(std::chrono::steady_clock::now() - t_write).count();

@@ -193,6 +193,19 @@ void add_fit_options(CLI::App* c, FitRequest& o, FitText& t, bool with_data = tr
               "fail at once when another run is writing the same --report directory "
               "(default: wait for it)");
   c->add_flag("--progress", o.progress, "progress line on stderr (default: when it is a terminal)");
+  c->add_option("--input-form", o.input_form,
+                "the data's form: native (v_x, omega, N, R, T_x, ...), wheel (V, alpha, "
+                "slip_ratio or omega_w, r_e, gamma, Fz, Fx, ... as a rig records them; CSV or "
+                "TYDEX .tdx) or auto (wheel when the header has V and alpha and no v_x)")
+      ->check(CLI::IsMember({"auto", "native", "wheel"}))
+      ->capture_default_str();
+  c->add_option("--axes", o.axes,
+                "the wheel form's axes: iso (x heading, y left, z up) or sae (SAE J670: y right, "
+                "z down)")
+      ->check(CLI::IsMember({"iso", "sae"}))
+      ->capture_default_str();
+  c->add_option("--contact-radius", o.contact_radius,
+                "contact radius R [m] of every row of a wheel-form file without an R column");
 }
 
 void add_fit(CLI::App& app, FitRequest& o, FitText& t) {
@@ -254,6 +267,11 @@ void add_batch(CLI::App& app, BatchRequest& o, Texts& t) {
                 "the covariate on the x axis of summary.html's trend plots (mean_N, mean_speed, "
                 "mean_omega_R, a manifest or --group-by column)")
       ->capture_default_str();
+  c->add_option("--keep", o.fit.keep,
+                "COL[,COL]: columns of the data (a tire id, the pressure, a run number) whose "
+                "value in each run goes to summary.csv; a run whose rows differ lists them "
+                "joined by '|'")
+      ->delimiter(',');
 }
 
 void add_simulate(CLI::App& app, SimulateRequest& o, Texts& t) {

@@ -1,7 +1,6 @@
 #include <frictionid/io/dataset_csv.hpp>
 
 #include <fcntl.h>
-#include <libfccp/csv.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -17,7 +16,9 @@
 #include <vector>
 
 #include <frictionid/io/input_error.hpp>
+#include <frictionid/io/units.hpp>
 #include "identify/row_chunks.hpp"
+#include "io/csv_fields.hpp"
 #include "io/encoding_sniffer.hpp"
 #include "io/huge_pages.hpp"
 #include "io/line_reader.hpp"
@@ -27,6 +28,9 @@ namespace frictionid {
 
 namespace {
 
+using io_detail::delimiter_hint;
+using io_detail::reject_carriage_return;
+using io_detail::split_fields;
 using text::misspelling_distance;
 using text::shown;
 
@@ -70,12 +74,14 @@ constexpr const char* kMeaning[kSlotCount] = {"slip velocity along the rolling a
                                               "standard deviation of M_z [N m], > 0",
                                               "standard deviation of M_roll [N m], > 0",
                                               "standard deviation of M_tilt [N m], > 0"};
+// What a unit in a column's header must measure (io/units.hpp).
+constexpr Quantity kQuantity[kSlotCount] = {
+    Quantity::Speed, Quantity::Speed, Quantity::AngularRate, Quantity::Force,  Quantity::Length,
+    Quantity::Force, Quantity::Force, Quantity::Moment,      Quantity::Moment, Quantity::Moment,
+    Quantity::Force, Quantity::Force, Quantity::Moment,      Quantity::Moment, Quantity::Moment};
 constexpr bool kRequiredColumn[kSlotCount] = {true,  false, true,  true,  true,
                                               false, false, false, false, false,
                                               false, false, false, false, false};
-
-using QuotePolicy = io::double_quote_escape<',', '"'>;
-using TrimPolicy = io::trim_chars<' ', '\t'>;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -89,61 +95,6 @@ std::string canonical_list() {
   std::string out;
   for (int s = 0; s < kSlotCount; ++s) out += (s ? ", " : "") + std::string(kCanonical[s]);
   return out;
-}
-
-// Splits `line` (of `length` characters up to its NUL) in place into trimmed, unquoted fields
-// (views into `line`). The vector is reused between rows, so a row costs no allocation. Lines
-// without a quote take a memchr fast path; others go through fast-cpp-csv-parser's double-quote
-// policy.
-void split_fields(char* line, std::size_t length, std::vector<std::string_view>& fields,
-                  const std::string& file, std::size_t line_no) {
-  fields.clear();
-  char* const line_end = line + length;
-  if (std::memchr(line, '"', length) == nullptr) {
-    char* begin = line;
-    while (true) {
-      char* comma = static_cast<char*>(std::memchr(begin, ',', line_end - begin));
-      char* b = begin;
-      char* e = comma ? comma : line_end;
-      while (b != e && (*b == ' ' || *b == '\t')) ++b;
-      while (b != e && (e[-1] == ' ' || e[-1] == '\t')) --e;
-      fields.emplace_back(b, static_cast<std::size_t>(e - b));
-      if (!comma) return;
-      begin = comma + 1;
-    }
-  }
-  char* begin = line;
-  while (true) {
-    const char* end_c = nullptr;
-    try {
-      end_c = QuotePolicy::find_next_column_end(begin);
-    } catch (const io::error::escaped_string_not_closed&) {
-      throw InputError(file, line_no, fields.size() + 1,
-                       "unterminated quoted field " + shown(begin) + "; expected a closing '\"'");
-    }
-    char* end = begin + (end_c - begin);
-    const bool last = *end == '\0';
-    char* next = end + 1;
-    char* b = begin;
-    char* e = end;
-    TrimPolicy::trim(b, e);
-    QuotePolicy::unescape(b, e);
-    fields.emplace_back(b, static_cast<std::size_t>(e - b));
-    if (last) return;
-    begin = next;
-  }
-}
-
-// A hint when a line looks separated by something other than ','.
-std::string delimiter_hint(const std::vector<std::string_view>& fields) {
-  static constexpr std::pair<char, const char*> kOthers[] = {
-      {';', "';'"}, {'\t', "tab"}, {'|', "'|'"}};
-  for (const auto& [c, name] : kOthers)
-    for (std::string_view f : fields)
-      if (f.find(c) != std::string_view::npos)
-        return std::string("; the line contains ") + name +
-               " characters: the file seems to use another delimiter, expected ','";
-  return "";
 }
 
 // Rows a file of `file_bytes` probably holds, judged by its first data row; capped by the
@@ -213,6 +164,8 @@ struct Header {
   std::string path;
   std::array<Column, kSlotCount> col;
   std::vector<std::string> names;         // the header's fields
+  std::vector<std::string> bare;          // the fields without a unit in brackets
+  double factor[kSlotCount] = {};         // each slot's unit in SI (1: no unit)
   std::vector<bool> used;                 // per field: a slot reads it
   std::vector<std::size_t> extra_fields;  // fields kept as text (Dataset::extra_names)
   std::vector<int> order;                 // the used slots in field order
@@ -242,7 +195,7 @@ struct Header {
       if (col[s].field >= 0 || (s < kFirstChannel && !kRequiredColumn[s])) continue;
       for (std::size_t k = 0; k < names.size(); ++k) {
         if (used[k]) continue;
-        if (const std::size_t d = misspelling_distance(names[k], col[s].header); d < best)
+        if (const std::size_t d = misspelling_distance(bare[k], col[s].header); d < best)
           best = d, best_slot = s, best_field = static_cast<int>(k);
       }
     }
@@ -258,22 +211,6 @@ struct Header {
   }
 };
 
-// A carriage return inside a line means CR-only line ends (CRLF's CR is already stripped).
-// Returns the line's length up to its first NUL, which the same scan finds: the rest of a line
-// after a NUL byte is ignored, as it always was. (glibc's strchrnul is a vectorised one-character
-// search; strcspn with one character was slower than strchr and strlen together.)
-std::size_t reject_carriage_return(const char* line, const std::string& path, std::size_t line_no) {
-  const char* const cr = ::strchrnul(line, '\r');
-  if (*cr != '\r') return static_cast<std::size_t>(cr - line);
-  const auto column = std::count(line, cr, ',') + 1;
-  throw InputError(path, line_no, static_cast<std::size_t>(column),
-                   line_no == 1
-                       ? "the first line contains a carriage return (CR): the file seems to use "
-                         "CR-only (classic Mac) line ends; expected LF or CRLF line ends"
-                       : "the line contains a carriage return (CR) inside it: the rows seem to "
-                         "use CR-only (classic Mac) line ends; expected LF or CRLF line ends");
-}
-
 // Finds every slot's column in the header fields; duplicates are errors.
 void match_columns(Header& h, const std::vector<std::string_view>& fields) {
   if (h.field_count() == 1 && h.names[0].empty())
@@ -286,14 +223,18 @@ void match_columns(Header& h, const std::vector<std::string_view>& fields) {
   }
   h.used.assign(h.field_count(), false);
   for (int s = 0; s < kSlotCount; ++s) {
+    h.factor[s] = 1.0;
     for (std::size_t k = 0; k < h.field_count(); ++k) {
-      if (h.names[k] != h.col[s].header) continue;
+      if (h.names[k] != h.col[s].header && h.bare[k] != h.col[s].header) continue;
       if (h.col[s].field >= 0)
         throw InputError(h.path, 1, k + 1,
                          "duplicate column " + describe(h.col[s], s) + " (also column " +
                              std::to_string(h.col[s].field + 1) + "); expected each column once");
       h.col[s].field = static_cast<int>(k);
       h.used[k] = true;
+      // A unit in brackets is converted on reading; none is SI.
+      h.factor[s] = column_unit_factor(kQuantity[s], h.names[k], split_header_name(h.names[k]),
+                                       h.path, 1, k + 1);
     }
   }
 }
@@ -351,7 +292,7 @@ void reject_misspelt_extras(const Header& h) {
     int slot = -1;
     for (int s = 0; s < kSlotCount; ++s) {
       if (h.col[s].field >= 0) continue;
-      if (const std::size_t d = misspelling_distance(h.names[k], h.col[s].header); d < best)
+      if (const std::size_t d = misspelling_distance(h.bare[k], h.col[s].header); d < best)
         best = d, slot = s;
     }
     if (slot < 0) continue;
@@ -376,6 +317,7 @@ Header read_header(char* line, const std::string& path, const ColumnMap& columns
   h.col = lookup_names(columns);
   split_fields(line, length, fields, path, 1);
   h.names.assign(fields.begin(), fields.end());
+  for (const auto& name : h.names) h.bare.push_back(split_header_name(name).name);
   match_columns(h, fields);
   check_columns(h, fields, require_channels);
   reject_misspelt_extras(h);
@@ -415,6 +357,13 @@ void parse_row(const Header& h, const std::vector<std::string_view>& fields, std
       throw InputError(h.path, line_no, column,
                        "column " + describe(h.col[s], s) + " has " + shown(text) + " (" + why +
                            "); expected a finite decimal number: " + kMeaning[s]);
+    if (h.factor[s] != 1.0) {
+      value[s] *= h.factor[s];
+      if (!std::isfinite(value[s]))
+        throw InputError(h.path, line_no, column,
+                         "column " + describe(h.col[s], s) + " has " + shown(text) +
+                             ", which is out of range in SI units; expected " + kMeaning[s]);
+    }
     if ((s == kN || s == kR) && !(value[s] > 0))
       throw InputError(
           h.path, line_no, column,

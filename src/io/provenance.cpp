@@ -34,6 +34,7 @@ nlohmann::ordered_json provenance_json(const Provenance& p) {
   for (const auto& f : p.inputs)
     inputs.push_back({{"path", f.path}, {"size", f.size}, {"sha256", f.sha256}});
   j["inputs"] = inputs;
+  if (!p.data_form.form.empty()) j["data_form"] = data_form_json(p.data_form);
   return j;
 }
 
@@ -54,6 +55,7 @@ std::vector<std::pair<std::string, std::string>> provenance_lines(const Provenan
                      ? f.path + " (not fingerprinted: not a regular file, or unreadable)"
                      : f.path + ", " + std::to_string(f.size) + " bytes, SHA-256 " + f.sha256);
   if (p.inputs.empty()) lines.emplace_back("input", "in-memory data (no input file)");
+  if (!p.data_form.form.empty()) lines.emplace_back("data form", data_form_text(p.data_form));
   return lines;
 }
 

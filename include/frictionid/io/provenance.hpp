@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <frictionid/io/data_form.hpp>
+
 namespace frictionid {
 
 // The version of this library, project(VERSION) of CMakeLists.txt (what `frictionid --version`
@@ -38,15 +40,19 @@ struct Provenance {
   nlohmann::ordered_json options;
   // The files read; empty when the data came from memory (a DataFrame, Python columns).
   std::vector<InputFile> inputs;
+  // How the data file (the first input) was read: its form, why, its axes and units; an empty
+  // form when not recorded.
+  DataForm data_form;
 };
 
-// {"version", "command_line", "python_call", "options", "inputs": [{"path", "size", "sha256"}]};
-// an empty command line or call is null.
+// {"version", "command_line", "python_call", "options", "inputs": [{"path", "size", "sha256"}],
+// "data_form" (data_form_json, present when recorded)}; an empty command line or call is null.
 nlohmann::ordered_json provenance_json(const Provenance& p);
 
 // The lines a page prints, as (label, text) pairs in a fixed order: "frictionid version",
 // "command line" (or "Python call"), "resolved options" (one-line JSON), and one "input" per
-// file ("data/run.csv, 123456 bytes, SHA-256 ab12…" in full) or "in-memory data". Plain text;
+// file ("data/run.csv, 123456 bytes, SHA-256 ab12…" in full) or "in-memory data", and "data
+// form" (data_form_text) when recorded. Plain text;
 // the page escapes it.
 std::vector<std::pair<std::string, std::string>> provenance_lines(const Provenance& p);
 
