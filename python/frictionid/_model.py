@@ -137,7 +137,7 @@ def generate(
 
 def simulate(
     model: str = "exact",
-    pressure: Optional[str] = "uniform",
+    pressure: Optional[str] = None,
     params: Optional[Mapping[str, float]] = None,
     *,
     contact: str = "circle",
@@ -157,8 +157,8 @@ def simulate(
     (docs/physics.md §4), as ``frictionid simulate``.
 
     Args:
-        model, pressure, params, contact: the friction model, as for :func:`evaluate` (pressure
-            None with a pressure map).
+        model, pressure, params, contact: the friction model, as for :func:`evaluate`;
+            pressure None is ``uniform`` here, as for ``frictionid simulate``.
         inertia_ratio: I/(M_b R^2): 0.5 a uniform disk, 1 a thin ring.
         v0, omega0, slip_angle_deg: initial speed [m/s], spin [rad/s], slip direction [deg].
         mass: M_b [kg]; R: radius [m]; N: normal load [N] (default M_b * 9.81).

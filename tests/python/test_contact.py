@@ -97,6 +97,11 @@ def test_coefficients_and_simulate_take_a_contact(run_cli, footprint):
                               inertia_ratio=0.5, v0=1, omega0=10, R=0.1, trajectory=False)
     assert out["contact"] == "ellipse:0.8"
     assert out["stopped"]
+    on_map = frictionid.simulate(params={"f": 0.3}, contact=f"map:{footprint}",
+                                 inertia_ratio=0.5, v0=1, omega0=10, R=0.1, trajectory=False)
+    assert on_map["pressure"] == "map"
+    assert frictionid.simulate(params={"f": 0.3}, inertia_ratio=0.5, trajectory=False)[
+        "pressure"] == "uniform"
 
 
 def test_a_map_is_the_pressure(run_cli, tmp_path, footprint):
