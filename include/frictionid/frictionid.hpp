@@ -29,6 +29,7 @@
 #include <frictionid/io/dataset_writer.hpp>
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/pressure_law_reader.hpp>
+#include <frictionid/io/pressure_map_reader.hpp>
 #include <frictionid/io/report_writer.hpp>
 #include <frictionid/io/summary_table.hpp>
 #include <frictionid/io/tydex_reader.hpp>

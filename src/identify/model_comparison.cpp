@@ -79,8 +79,11 @@ ModelComparison compare_models(const Dataset& data, const std::vector<FitSetting
     c.residual_autocorrelation.push_back(ac);
   }
 
+  // The approximants know the circle only: their fitted a, b, m are set beside the exact
+  // model's on the circle, never on another spot.
   for (std::size_t k = 0; k < settings.size(); ++k) {
     if (settings[k].model != ModelKind::Exact) continue;
+    if (settings[k].contact.kind != model::SpotKind::Circle) continue;
     model::PressureLaw<double> law = settings[k].law;
     double kappa = 1.0;
     for (const auto& p : c.fits[k].parameters) {

@@ -44,6 +44,27 @@ TEST(ModelComparison, ClosedFormsLeaveASystematicResidualOnExactDataAndAicPrefer
   EXPECT_NEAR(c.implied_by_exact.at("m"), r * r, 1e-10);
 }
 
+// The approximants know the circle only, so the coefficients set beside theirs come from the
+// exact fit on the circle, not from an exact fit on an ellipse listed before it.
+TEST(ModelComparison, CoefficientsImpliedByExactComeFromTheFitOnTheCircle) {
+  const Law law = Law::uniform();
+  const auto truth = default_parameters(law, 0.9, 1.15, 0.08);
+  SyntheticDesign design;
+  design.rows = 120;
+  const Dataset d = generate_dataset(ModelKind::Exact, law, truth, design, NoiseSpec{}, 11);
+  FitSettings on_ellipse =
+      FitSettings::defaults(ModelKind::Exact, law, "law", model::ContactSpot::ellipse(0.5));
+  on_ellipse.fix("h_y", 0.0);
+  const ModelComparison c =
+      compare_models(d, {on_ellipse, FitSettings::defaults(ModelKind::Exact, law, "law")});
+  ASSERT_EQ(c.fits.size(), 2u);
+  const double kappa = c.fits[1].parameters[1].value;
+  EXPECT_NEAR(kappa, 1.15, 1e-8);
+  const double r = (1 + kappa) * (4.0 / 3.0) / kappa;  // uniform: (1 + kappa) m2/(kappa m3)
+  EXPECT_NEAR(c.implied_by_exact.at("b"), 16.0, 1e-12);
+  EXPECT_NEAR(c.implied_by_exact.at("m"), r * r, 1e-9);
+}
+
 // Physics.md §3: with the coefficients the pressure law implies, the seed's T_par differs from
 // the exact one only in shape, t_seed = eps/sqrt(eps^2 + a) against the Hertz closed form of
 // §2, t = 3/(16 eps) [(4 eps^2 - eps^4) A + (eps^2 + 2) W]. Fitting f alone to exact T_x data
