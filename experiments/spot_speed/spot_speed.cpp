@@ -1,0 +1,137 @@
+// What do the tabulated spot integrals (include/frictionid/model/spot_integral_table.hpp) cost
+// to build and to evaluate, against the ray integration of spot_integrals.hpp that they replace?
+// experiments/README.md, "Contact spots", has the results.
+//
+//   spot_speed [--repeat N]      # run.sh builds and runs it
+//
+// For ellipse:0.6 with the Hertz law and rect:0.7 with the parabolic law: the table's build on 1
+// and 2 threads (wall and process CPU time, median of N builds), its size, and the time of one
+// evaluation of the twelve integrals by the table, by SpotIntegrator (the model's path) and, for
+// the rectangle, by RectStripIntegrator (the table's points), each the median of N passes over
+// 256 fixed centres of rotation (|c| log-uniform in [0.01, 1000] units of R, any direction), on
+// one thread. The table's largest difference from SpotIntegrator at its fine angular rule over
+// those centres is printed as a check.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <frictionid/model/spot_integral_table.hpp>
+
+using namespace frictionid::model;
+
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double process_cpu() {
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
+
+std::vector<std::array<double, 2>> centres() {
+  std::mt19937_64 g(2026);
+  auto u01 = [&g] { return static_cast<double>(g() >> 11) * 0x1p-53; };
+  std::vector<std::array<double, 2>> out;
+  for (int i = 0; i < 256; ++i) {
+    const double r = std::pow(10.0, -2.0 + 5.0 * u01()), t = 2.0 * M_PI * u01();
+    out.push_back({r * std::cos(t), r * std::sin(t)});
+  }
+  return out;
+}
+
+// Median time of one call over `repeat` passes of the centres, in microseconds.
+template <typename F>
+double per_call(const F& f, int repeat) {
+  const auto cs = centres();
+  std::vector<double> passes;
+  volatile double sink = 0.0;
+  for (int r = 0; r < repeat; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    double s = 0.0;
+    for (const auto& c : cs) s += f(c[0], c[1]).ey[1];
+    passes.push_back(1e6 * seconds_since(t0) / static_cast<double>(cs.size()));
+    sink = sink + s;
+  }
+  return median(passes);
+}
+
+void run(const std::string& name, const ContactSpot& spot, const PressureLaw<double>& law,
+         int repeat) {
+  const double q = spot.q;
+  std::printf("| %s |", name.c_str());
+  SpotIntegralTable::Stats stats;
+  for (int threads : {1, 2}) {
+    std::vector<double> wall, cpu;
+    for (int r = 0; r < repeat; ++r) {
+      const double c0 = process_cpu();
+      const auto t0 = std::chrono::steady_clock::now();
+      const SpotIntegralTable table(spot, law, q, {}, threads);
+      wall.push_back(seconds_since(t0));
+      cpu.push_back(process_cpu() - c0);
+      stats = table.stats();
+    }
+    std::printf(" %.2f s (%.2f s CPU) |", median(wall), median(cpu));
+  }
+  const SpotIntegralTable table(spot, law, q, {}, 2);
+  const SpotIntegrator integrate(spot, law, q);
+  const double t_table = per_call([&](double x, double y) { return table(x, y); }, 5 * repeat);
+  const double t_rays = per_call([&](double x, double y) { return integrate(x, y); }, repeat);
+  std::string strips = "–";
+  if (spot.kind == SpotKind::Rect) {
+    const RectStripIntegrator s(law, q);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f us",
+                  per_call([&](double x, double y) { return s(x, y); }, repeat));
+    strips = buf;
+  }
+  // The check: the table against the rays at their fine angular rule, relative to A0.
+  const SpotIntegrator fine(spot, law, q, SpotRules{&radial_rule(), &fine_rule()});
+  const double A0 = spot_moments(spot, law_moments(law), q).A0;
+  double worst = 0.0;
+  for (const auto& c : centres()) {
+    const SpotIntegrals a = table(c[0], c[1]), b = fine(c[0], c[1]);
+    for (std::size_t w = 0; w < 3; ++w)
+      worst = std::max({worst, std::fabs(a.ex[w] - b.ex[w]), std::fabs(a.ey[w] - b.ey[w]),
+                        std::fabs(a.x_ey[w] - b.x_ey[w]), std::fabs(a.y_ex[w] - b.y_ex[w])});
+  }
+  std::printf(" %zu | %zu | %.0f kB | **%.2f us** | %.0f us | %s | %.0e |\n", stats.points,
+              stats.pieces, stats.coefficients * 12 * 8 / 1e3, t_table, t_rays, strips.c_str(),
+              worst / A0);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int repeat = 5;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--repeat" && i + 1 < argc) {
+      repeat = std::max(1, std::atoi(argv[++i]));
+    } else {
+      std::fprintf(stderr, "usage: spot_speed [--repeat N]\n");
+      return 2;
+    }
+  }
+  std::printf(
+      "| spot, law | build, 1 thread | build, 2 threads | points | pieces | size | table | "
+      "SpotIntegrator | RectStripIntegrator | table - rays (of A0) |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  run("ellipse:0.6, hertz", ContactSpot::ellipse(0.6), PressureLaw<double>::hertz(), repeat);
+  run("rect:0.7, parabolic", ContactSpot::rect(0.7), PressureLaw<double>::parabolic(), repeat);
+  return 0;
+}

@@ -1,0 +1,1205 @@
+// The twelve spot integrals of spot_integrals.hpp tabulated once over the whole plane of the
+// centre of rotation c, for one spot (an ellipse or a rectangle), aspect q and pressure law. A
+// fit with those fixed evaluates the same twelve functions of c at every row of every iteration
+// (docs/physics.md §9.3); the table answers in ~0.3 us where the ray integration of
+// SpotIntegrator takes 100-300 us, after a build of 0.05-0.4 s of CPU time.
+//
+// Symmetry. The spot is symmetric under x -> -x and y -> -y. Reflecting x turns e_y and the
+// weight x, reflecting y turns e_x and the weight y, so each integral is even or odd in each of
+// c_x and c_y (kOddX, kOddY) and only the quadrant c_x, c_y >= 0 is tabulated.
+//
+// Where the integrals are not smooth. They are a convolution of the weighted pressure with the
+// direction field e3 x d/|d|, hence analytic in c except on the lines where sigma0 is not: the
+// ellipse's rim and step circles, the rectangle's sides and steps |x| = B, and its edges y = +-q
+// (sigma0 is uniform across y, so it jumps there for every law). Across such a line the
+// integrals go like d^2 ln|d| (a jump of sigma0), d^(n+2) (sigma0 ~ d^n at a rim) or d ln|d|
+// (the ring law); where two lines meet (the rectangle's corners, a step meeting the edge) the
+// singularity is a point.
+//
+// Patches. The quadrant is covered by patches whose coordinate lines follow those sets:
+//  - ellipse: reference polar coordinates (P, beta) of (c_x, c_y/q) for P <= P_near: the rim and
+//    every step are circles P = const;
+//  - rectangle: physical Cartesian coordinates in the box [0, R_near]^2, and a disk of polar
+//    coordinates (rho, theta) about every corner (x_s, q) (x_s = 1 or a step B), in which the
+//    lines through the corner are rays theta = const; the box's cells next to a corner lie
+//    inside its disk. Physical, not reference, coordinates: there the direction field is
+//    isotropic and the distance to a line measures how far the integrals stay analytic;
+//  - far: t = 1/|c| in [0, 1/R_near] and the physical angle gamma. t = 0 is the sliding limit
+//    e = (sin gamma, -cos gamma), from the moments A0, Axx, Ayy; R_near is 1.5 times the spot's
+//    largest radius, which bounds the expansion in t (radius 1/max|r|).
+// Each patch is a grid of root cells. On both sides of every singular line (and about every
+// corner) a cell of width 0.35 is graded as u = u_s +- w ((1 -+ s)/2)^3 in its coordinate
+// s in [-1, 1] (powers 4 and 6 for the ring law's d ln d): d^2 ln d becomes s^6 ln s, which a
+// Chebyshev series of degree 24-48 resolves to 1e-11. The reference angle of an elongated
+// ellipse is graded towards both axes at the scale atanh(min(q, 1/q)), the distance of its
+// branch points from the real line.
+//
+// Build. Every root cell is sampled on Chebyshev extreme points, first of degree 8 each way,
+// then of the degree (a multiple of the last, so that the points nest and none is computed
+// twice) at which its coefficients, extrapolated at the rate of their upper half, fall below
+// kSampleTolerance; the error estimate sums that geometric tail. A cell that needs more than
+// degree 64 is halved. One more point per cell checks the interpolant. Points shared by
+// neighbouring cells are computed once, each round's points in parallel. The sampling degree is
+// thus set by what the function needs, not by the cost of an evaluation: the accepted series are
+// then cut, without new samples, into pieces of degree <= 16 each way (the series re-expanded
+// exactly on halves until what a cut drops sums to < kStoreTolerance), and each piece keeps per
+// row only the coefficients that matter. The build is deterministic: the same bits on any number
+// of threads. 2,000-8,000 points for an ellipse, 8,000-23,000 for a rectangle at q = 0.4-2.5;
+// an ellipse of aspect 0.1 or 4 needs 10,000-30,000.
+//
+// The points. Ellipse: SpotIntegrator, with rules chosen for the law (node_rules: Gauss-Legendre,
+// exact where sigma0 is a polynomial along a ray; a sine-squared substitution for Hertz and
+// powers >= 1). Rectangle: RectStripIntegrator, the y-integral in closed form: 10-30 us a point,
+// and exact next to the corners, where SpotIntegrator's default angular rule errs by up to
+// 5e-9 A0.
+//
+// Accuracy: within 3e-11 A0 of the integrals (|ex|, |ey| <= A0) over the whole plane for the
+// uniform, Hertz, parabolic and annulus laws and q from 0.4 to 2.5, measured at 4,000 random
+// centres including the spot's centre, the rim and edges to 1e-8, the corners, and |c| up to
+// 1e6 (tests/model/spot_integral_table_test.cpp); stats().estimate is the build's own worst
+// estimate. Cost: experiments/README.md, "Contact spots".
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include <frictionid/model/contact_spot.hpp>
+#include <frictionid/model/gauss_legendre_rule.hpp>
+#include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model/spot_integrals.hpp>
+#include <frictionid/model/tanh_sinh_rule.hpp>
+
+namespace frictionid::model {
+
+// The twelve integrals of a rectangle |x| <= 1, |y| <= q whose pressure sigma0(|x|) is uniform
+// across y (docs/physics.md §9.1), by the y-integral in closed form and a 1-D quadrature in x.
+// With a = x - c_x, eta = y - c_y and rho = sqrt(a^2 + eta^2),
+//   ∫ e_x dy = -∫ eta/rho deta,   ∫ e_y dy = a ∫ deta/rho,
+// whose primitives in eta are rho, ln(eta + rho), (eta rho - a^2 ln(eta + rho))/2 and
+// rho^3/3 - a^2 rho (the weights y and y^2 expand in powers of eta), formed between the edges
+// eta0 = -q - c_y and eta1 = q - c_y without cancellation. The x-integrand is smooth but for
+// a ln|a| at x = c_x and the law's rim and breakpoints, where the x-range is cut; the fine
+// tanh-sinh rule reaches ~1e-14 A0 on every piece. Far from the rectangle (more than 2 max(1, q)
+// away) the closed forms' terms would cancel (they grow like |c|^2); there the y-integrand is
+// analytic over the strip and 24 Gauss–Legendre points take it. 10-30 us a point, against
+// 100-300 us for the ray integration of SpotIntegrator, whose default angular rule also errs by
+// up to 5e-9 A0 within 1e-4 of a corner, where this has no difficulty. Not for the ring law (no
+// density).
+class RectStripIntegrator {
+ public:
+  RectStripIntegrator(const PressureLaw<double>& law, double q) : law_(law), q_(q) {
+    std::vector<double> kept = law_.breakpoints();
+    if (kept.size() > SpotIntegrator::kMaxBreaks) kept = law_.steps();
+    for (double b : kept)
+      if (b > 0.0 && b < 1.0) breaks_.push_back(b);
+  }
+
+  SpotIntegrals operator()(double cx, double cy) const {
+    std::vector<double> cuts = {-1.0, 0.0, 1.0};
+    for (double b : breaks_) {
+      cuts.push_back(b);
+      cuts.push_back(-b);
+    }
+    if (cx > -1.0 && cx < 1.0) cuts.push_back(cx);
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    const double q = q_, e0 = -q - cy, e1 = q - cy;
+    const double gap =
+        std::hypot(std::max(0.0, std::fabs(cx) - 1.0), std::max(0.0, std::fabs(cy) - q));
+    const bool far = gap > 2.0 * std::max(1.0, q);
+    double acc[12] = {};
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      const double lo = cuts[k], hi = cuts[k + 1], len = hi - lo;
+      for (const QuadratureNode& node : fine_rule()) {
+        const double x = lo + len * node.from_left;
+        // a = x - c_x and 1 - |x| to full precision next to the cut and the rim.
+        const double a = lo == cx   ? len * node.from_left
+                         : hi == cx ? -len * node.from_right
+                                    : x - cx;
+        const double ax = std::fabs(x);
+        const double rim = hi == 1.0    ? len * node.from_right
+                           : lo == -1.0 ? len * node.from_left
+                                        : 1.0 - ax;
+        const double W = node.weight * len * law_(std::min(1.0, ax), rim);
+        if (W == 0.0) continue;
+        double ex[3], ey[2];  // ∫ {1, y, y^2} e_x dy and ∫ {1, y} e_y dy over |y| <= q
+        if (far) {
+          ex[0] = ex[1] = ex[2] = ey[0] = ey[1] = 0.0;
+          for (const QuadratureNode& g : far_rule()) {
+            const double y = q * (g.from_left - g.from_right), w = 2.0 * q * g.weight;
+            const double eta = y - cy, inv = w / std::hypot(a, eta);
+            ex[0] -= eta * inv;
+            ex[1] -= y * eta * inv;
+            ex[2] -= y * y * eta * inv;
+            ey[0] += a * inv;
+            ey[1] += a * y * inv;
+          }
+        } else {
+          const double a2 = a * a;
+          const double r0 = std::sqrt(a2 + e0 * e0), r1 = std::sqrt(a2 + e1 * e1);
+          // [rho] and [ln(eta + rho)] between the edges (eta1 - eta0 = 2q): log1p where both
+          // edges lie on one side, the product where they straddle c_y.
+          const double d1 = -4.0 * q * cy / (r0 + r1);
+          double d0;
+          if (e0 >= 0.0)
+            d0 = std::log1p((2.0 * q + d1) / (e0 + r0));
+          else if (e1 <= 0.0)
+            d0 = std::log1p((2.0 * q - d1) / (r1 - e1));
+          else
+            d0 = a == 0.0 ? 0.0 : std::log((e1 + r1) * (r0 - e0) / a2);
+          const double ad0 = a == 0.0 ? 0.0 : a * d0;
+          // [eta rho - a^2 ln(eta + rho)]/2 and [rho^3/3 - a^2 rho]: their terms cancel to
+          // eps |a| |eta| at worst, negligible this near the strip.
+          const double d2 = 0.5 * (e1 * r1 - e0 * r0 - (a == 0.0 ? 0.0 : a2 * d0));
+          const double d3 = d1 * ((r1 * r1 + r1 * r0 + r0 * r0) / 3.0 - a2);
+          ex[0] = -d1;
+          ex[1] = -(d2 + cy * d1);
+          ex[2] = -(d3 + 2.0 * cy * d2 + cy * cy * d1);
+          ey[0] = ad0;
+          ey[1] = a * d1 + cy * ad0;
+        }
+        acc[0] += W * ex[0];
+        acc[1] += W * x * ex[0];
+        acc[2] += W * ex[1];
+        acc[3] += W * ey[0];
+        acc[4] += W * x * ey[0];
+        acc[5] += W * ey[1];
+        acc[6] += W * x * ey[0];
+        acc[7] += W * x * x * ey[0];
+        acc[8] += W * x * ey[1];
+        acc[9] += W * ex[1];
+        acc[10] += W * x * ex[1];
+        acc[11] += W * ex[2];
+      }
+    }
+    SpotIntegrals out;
+    for (std::size_t w = 0; w < 3; ++w) {
+      out.ex[w] = acc[w];
+      out.ey[w] = acc[3 + w];
+      out.x_ey[w] = acc[6 + w];
+      out.y_ex[w] = acc[9 + w];
+    }
+    return out;
+  }
+
+ private:
+  static const std::vector<QuadratureNode>& far_rule() {
+    static const std::vector<QuadratureNode> rule = make_gauss_legendre_rule(24);
+    return rule;
+  }
+
+  PressureLaw<double> law_;
+  double q_;
+  std::vector<double> breaks_;
+};
+
+// Thrown by a table build that its `stop` check asked to stop (a cancelled fit).
+class SpotTableBuildStopped : public std::runtime_error {
+ public:
+  SpotTableBuildStopped() : std::runtime_error("the spot-integral table's build was stopped") {}
+};
+
+// Calls work(i) for every i in [0, count), on any number of threads, and returns when all calls
+// have finished. A fit passes its own thread pool.
+using SpotParallelFor =
+    std::function<void(std::size_t count, const std::function<void(std::size_t)>& work)>;
+
+// A SpotParallelFor on `threads` threads (0: every hardware thread), the caller's among them. An
+// exception thrown by work is rethrown after every thread has finished.
+inline SpotParallelFor spot_threads(int threads) {
+  return [threads](std::size_t count, const std::function<void(std::size_t)>& work) {
+    unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
+    n = static_cast<unsigned>(
+        std::min<std::size_t>(std::max(1u, n), std::max<std::size_t>(1, count)));
+    std::atomic<std::size_t> next{0};
+    std::exception_ptr error;
+    std::mutex error_mutex;
+    auto run = [&] {
+      for (std::size_t i; (i = next.fetch_add(1, std::memory_order_relaxed)) < count;) {
+        try {
+          work(i);
+        } catch (...) {
+          const std::lock_guard<std::mutex> lock(error_mutex);
+          if (!error) error = std::current_exception();
+          next = count;
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < n; ++t) pool.emplace_back(run);
+    run();
+    for (auto& t : pool) t.join();
+    if (error) std::rethrow_exception(error);
+  };
+}
+
+class SpotIntegralTable {
+ public:
+  static constexpr int kChannels = 12;  // ex[0..2], ey[0..2], x_ey[0..2], y_ex[0..2]
+
+  // Tabulates the integrals of an ellipse or a rectangle (a circle is the ellipse q = 1; a map
+  // throws std::invalid_argument) with aspect q and this law. The build asks `stop` before every
+  // point, from the worker threads, and throws SpotTableBuildStopped when it says so.
+  SpotIntegralTable(const ContactSpot& spot, const PressureLaw<double>& law, double q,
+                    const std::function<bool()>& stop = {}, int threads = 0)
+      : SpotIntegralTable(spot, law, q, stop, spot_threads(threads)) {}
+
+  SpotIntegralTable(const ContactSpot& spot, const PressureLaw<double>& law, double q,
+                    const std::function<bool()>& stop, const SpotParallelFor& parallel)
+      : kind_(spot.kind == SpotKind::Rect ? SpotKind::Rect : SpotKind::Ellipse),
+        law_(law),
+        q_(spot.has_aspect() ? q : 1.0) {
+    if (spot.kind == SpotKind::Map) throw std::invalid_argument("no table for a pressure map");
+    if (!(q_ > 0.0) || !std::isfinite(q_))
+      throw std::invalid_argument("the spot's aspect q must be > 0");
+    const SpotMoments<double> m = spot_moments(spot, law_moments(law), q_);
+    A0_ = m.A0;
+    Axx_ = m.Axx;
+    Ayy_ = m.Ayy;
+    const SpotIntegrator integrate(spot, law, q_, node_rules(kind_, law));
+    const RectStripIntegrator strips(law, q_);
+    Builder{*this, integrate, strips, stop, parallel, {}}.run();
+  }
+
+  // The integrals for the centre of rotation at physical (cx, cy), units of R.
+  SpotIntegrals operator()(double cx, double cy) const {
+    double v[kChannels];
+    evaluate(std::fabs(cx), std::fabs(cy), v);
+    const bool fx = std::signbit(cx), fy = std::signbit(cy);
+    for (int j = 0; j < kChannels; ++j)
+      if ((fx && kOddX[j]) != (fy && kOddY[j])) v[j] = -v[j];
+    SpotIntegrals out;
+    for (std::size_t w = 0; w < 3; ++w) {
+      out.ex[w] = v[w];
+      out.ey[w] = v[3 + w];
+      out.x_ey[w] = v[6 + w];
+      out.y_ex[w] = v[9 + w];
+    }
+    return out;
+  }
+
+  // Whether this table holds the integrals a model of this spot, aspect and law needs (the same
+  // kind, the same q bit for bit, the same law and shape parameter).
+  bool matches(const ContactSpot& spot, double q, const PressureLaw<double>& law) const {
+    if (spot.kind == SpotKind::Map) return false;
+    const SpotKind kind = spot.kind == SpotKind::Rect ? SpotKind::Rect : SpotKind::Ellipse;
+    const double aspect = spot.has_aspect() ? q : 1.0;
+    const bool shaped = law.kind == PressureKind::Power || law.kind == PressureKind::Annulus;
+    return kind == kind_ && aspect == q_ && law.kind == law_.kind && (!shaped || law.n == law_.n) &&
+           (law.kind != PressureKind::Table || law.table == law_.table);
+  }
+
+  SpotKind kind() const { return kind_; }
+  double q() const { return q_; }
+  const PressureLaw<double>& law() const { return law_; }
+
+  struct Stats {
+    std::size_t points = 0;        // integrals computed by the build (with the check points)
+    std::size_t pieces = 0;        // Chebyshev pieces stored
+    std::size_t coefficients = 0;  // of each channel, summed over the pieces
+    double estimate = 0.0;         // the build's own error estimate, worst cell, relative to A0
+  };
+  const Stats& stats() const { return stats_; }
+
+ private:
+  // --- Tolerances and grading (measured choices; see the header comment) ------------------------
+
+  static constexpr double kSampleTolerance = 3e-11;  // interpolation error of a sampled cell / A0
+  static constexpr double kCheckTolerance = 5e-11;   // the cell's check point / A0
+  static constexpr double kStoreTolerance = 2e-11;   // dropped by the cut into pieces / A0
+  static constexpr int kStartDegree = 8;
+  static constexpr int kMaxSampleDegree = 64;
+  static constexpr int kStoreDegree = 16;
+  static constexpr int kMaxDepth = 24;
+  static constexpr double kMaxRate = 0.95;  // slowest decay the error estimate assumes
+  static constexpr double kSafety = 1.1;    // on the degree extrapolated for a cell
+  static constexpr double kNear = 1.5;      // R_near / max |r| over the spot
+  static constexpr double kGraded = 0.35;   // width of the graded cells next to a line
+  static constexpr double kRatio = 6.0;     // a linear cell's width / its distance from a line
+  static constexpr double kCornerRadius = 0.5;
+  static constexpr double kCornerInset = 0.7;       // graded width / corner radius (< 1/sqrt 2)
+  static constexpr double kCornerAngle = M_PI / 4;  // graded angle next to a line's direction
+  static constexpr double kSqueeze = 0.3;  // grade the reference angle when atanh(q) is smaller
+  static constexpr int kSineSquaredPoints = 28;
+  static constexpr std::size_t kMaxGradedBreaks = 8;
+
+  // Which channels change sign with c_x and with c_y.
+  static constexpr bool kOddX[kChannels] = {false, true, false, true,  false, true,
+                                            false, true, false, false, true,  false};
+  static constexpr bool kOddY[kChannels] = {true,  true,  false, false, false, true,
+                                            false, false, true,  false, false, true};
+
+  // --- The points' rules ------------------------------------------------------------------------
+
+  // Along a ray, sigma0 of a uniform, parabolic or annulus law (power:N with a whole N <= 4) is a
+  // polynomial in r between the cuts, and so is the integrand (degree 2N + 3 with the weights):
+  // Gauss–Legendre with N + 3 points is exact there and ~10x cheaper than tanh-sinh. Hertz and
+  // any other power N >= 1 take the sine-squared rule (1e-13 for power:1.7, at half the cost of
+  // tanh-sinh); a power below 1 keeps tanh-sinh. The ring law's integral runs over the rim's
+  // reference angle, whose integrand turns on the scale of the aspect near the long axis: the
+  // default rule errs by 1e-8 A0 at q = 0.7 and the fine one by 3e-7 at q = 0.3; step 1/64 stays
+  // below 1e-13 for 0.3 <= q <= 4.
+  static SpotRules node_rules(SpotKind kind, const PressureLaw<double>& law) {
+    SpotRules r;
+    int n = -1;
+    if (law.kind == PressureKind::Uniform || law.kind == PressureKind::Annulus) n = 0;
+    if (law.kind == PressureKind::Parabolic) n = 1;
+    if (law.kind == PressureKind::Power && law.n >= 0.0 && law.n <= 4.0 &&
+        law.n == std::floor(law.n))
+      n = static_cast<int>(law.n);
+    if (n >= 0) r.radial = &gauss_rule(n + 3);
+    const bool half = law.kind == PressureKind::Hertz ||
+                      (law.kind == PressureKind::Power && n < 0 && (law.n >= 1.0 || law.n == 0.5));
+    if (half) r.radial = &sine_squared_rule();
+    if (kind == SpotKind::Rect) r.angular = &fine_rule();
+    if (law.kind == PressureKind::Ring) {
+      static const std::vector<QuadratureNode> rim = make_tanh_sinh_rule(1.0 / 64.0, 1e-30);
+      r.angular = &rim;
+    }
+    return r;
+  }
+
+  // Gauss–Legendre in t with r = sin^2(pi t/2): sqrt(r) and sqrt(1 - r) become sin and cos, so an
+  // integrand with a square-root end turns analytic. 28 points keep the integrals within 1e-11 of
+  // A0 where tanh-sinh takes 51.
+  static const std::vector<QuadratureNode>& sine_squared_rule() {
+    static const std::vector<QuadratureNode> rule = [] {
+      std::vector<QuadratureNode> out;
+      for (const QuadratureNode& g : make_gauss_legendre_rule(kSineSquaredPoints)) {
+        const double a = std::sin(0.5 * M_PI * g.from_left);
+        const double b = std::sin(0.5 * M_PI * g.from_right);
+        out.push_back({a * a, b * b, g.weight * M_PI * a * b});
+      }
+      return out;
+    }();
+    return rule;
+  }
+
+  static const std::vector<QuadratureNode>& gauss_rule(int points) {
+    static const std::vector<QuadratureNode> rules[] = {
+        make_gauss_legendre_rule(3), make_gauss_legendre_rule(4), make_gauss_legendre_rule(5),
+        make_gauss_legendre_rule(6), make_gauss_legendre_rule(7)};
+    return rules[points - 3];
+  }
+
+  // --- The table --------------------------------------------------------------------------------
+
+  enum class Coords { Polar, Box, Corner, Far };
+
+  // One coordinate of a root cell: s in [-1, 1] to the patch coordinate u in [lo, hi], linear or
+  // graded towards a singular line at hi, u = hi - (hi - lo) ((1 - s)/2)^power (at lo: mirrored).
+  struct Axis {
+    double lo = 0.0, hi = 1.0;
+    int power = 1;  // 1: linear
+    bool towards_hi = true;
+
+    double at(double s) const {
+      if (s == -1.0) return lo;
+      if (s == 1.0) return hi;
+      if (power == 1) return lo + (hi - lo) * 0.5 * (s + 1.0);
+      if (towards_hi) return hi - (hi - lo) * std::pow(0.5 * (1.0 - s), power);
+      return lo + (hi - lo) * std::pow(0.5 * (1.0 + s), power);
+    }
+    double s_of(double u) const {
+      if (power == 1) return std::clamp(2.0 * (u - lo) / (hi - lo) - 1.0, -1.0, 1.0);
+      if (towards_hi) return 1.0 - 2.0 * root(std::clamp((hi - u) / (hi - lo), 0.0, 1.0));
+      return 2.0 * root(std::clamp((u - lo) / (hi - lo), 0.0, 1.0)) - 1.0;
+    }
+    double root(double x) const {
+      if (power == 3) return std::cbrt(x);
+      if (power == 4) return std::sqrt(std::sqrt(x));
+      if (power == 6) return std::sqrt(std::cbrt(x));
+      return std::pow(x, 1.0 / power);
+    }
+  };
+
+  struct Root {
+    int patch;
+    Axis a0, a1;
+    int tree;  // its node in tree_
+  };
+
+  // A binary tree per root: an inner node halves one s-coordinate at `mid`; a leaf names a piece.
+  struct TreeNode {
+    int dir = -1;  // -1: a leaf
+    double mid = 0.0;
+    int child[2] = {-1, -1};
+    int leaf = -1;
+  };
+
+  // A stored piece: a box in its root's s-coordinates and, per row l of its series, row_len[l]
+  // coefficients of every channel (coefficient k of channel j at offset + (k' + k) * 12 + j).
+  struct Leaf {
+    double a0, b0, a1, b1;
+    int n0, n1;
+    std::size_t offset;
+    std::vector<int> row_len;
+  };
+
+  struct Patch {
+    Coords coords;
+    double x0 = 0.0, y0 = 0.0, radius = 0.0;  // a corner patch: its centre and radius
+    std::vector<double> breaks0, breaks1;     // the root cells' bounds in the patch coordinates
+    std::vector<int> roots;                   // into roots_, breaks0-major; -1: inside a corner
+
+    explicit Patch(Coords c, double x = 0.0, double y = 0.0, double r = 0.0)
+        : coords(c), x0(x), y0(y), radius(r) {}
+  };
+
+  // The physical centre of rotation of a patch point.
+  void centre(const Patch& p, double u0, double u1, double& cx, double& cy) const {
+    switch (p.coords) {
+      case Coords::Polar:
+        cx = u0 * std::cos(u1);
+        cy = q_ * u0 * std::sin(u1);
+        return;
+      case Coords::Box:
+        cx = u0;
+        cy = u1;
+        return;
+      case Coords::Corner:
+        cx = p.x0 + u0 * std::cos(u1);
+        cy = p.y0 + u0 * std::sin(u1);
+        return;
+      case Coords::Far:
+        cx = std::cos(u1) / u0;
+        cy = std::sin(u1) / u0;
+        return;
+    }
+  }
+
+  // The patch of a centre in the first quadrant (index into patches_), and its coordinates.
+  std::size_t coordinates(double ax, double ay, double& u0, double& u1) const {
+    if (kind_ == SpotKind::Ellipse) {
+      const double X = ax, Y = ay / q_, P = std::hypot(X, Y);
+      if (P <= near_) {
+        u0 = P;
+        u1 = P > 0.0 ? std::atan2(Y, X) : 0.0;
+        return 0;
+      }
+    } else if (ax <= near_ && ay <= near_) {
+      for (std::size_t i = 2; i < patches_.size(); ++i) {
+        const Patch& p = patches_[i];
+        const double dx = ax - p.x0, dy = ay - p.y0;
+        if (dx * dx + dy * dy < p.radius * p.radius) {
+          u0 = std::hypot(dx, dy);
+          u1 = u0 > 0.0 ? std::atan2(dy, dx) : 0.0;
+          return i;
+        }
+      }
+      u0 = ax;
+      u1 = ay;
+      return 0;
+    }
+    const double r = std::hypot(ax, ay);
+    u0 = r < HUGE_VAL ? 1.0 / r : 0.0;
+    u1 = std::atan2(ay, ax);
+    return 1;
+  }
+
+  // The limit |c| -> inf in direction gamma: e = (sin gamma, -cos gamma) over the whole spot.
+  std::array<double, kChannels> far_limit(double gamma) const {
+    const double s = std::sin(gamma), c = std::cos(gamma);
+    std::array<double, kChannels> v{};
+    v[0] = s * A0_;
+    v[3] = -c * A0_;
+    v[7] = -c * Axx_;
+    v[11] = s * Ayy_;
+    return v;
+  }
+
+  void evaluate(double ax, double ay, double* v) const {
+    double u0, u1;
+    const Patch& g = patches_[coordinates(ax, ay, u0, u1)];
+    const std::size_t i0 = locate(g.breaks0, u0), i1 = locate(g.breaks1, u1);
+    const int r = g.roots[i0 * (g.breaks1.size() - 1) + i1];
+    if (r < 0) {  // inside a corner's disk by construction; only rounding can land here
+      for (int j = 0; j < kChannels; ++j) v[j] = std::nan("");
+      return;
+    }
+    const Root& root = roots_[static_cast<std::size_t>(r)];
+    const double s0 = root.a0.s_of(u0), s1 = root.a1.s_of(u1);
+    const TreeNode* node = &tree_[static_cast<std::size_t>(root.tree)];
+    while (node->dir >= 0)
+      node = &tree_[static_cast<std::size_t>(node->child[(node->dir == 0 ? s0 : s1) >= node->mid])];
+    const Leaf& leaf = leaves_[static_cast<std::size_t>(node->leaf)];
+    const double x = std::clamp((2.0 * s0 - leaf.a0 - leaf.b0) / (leaf.b0 - leaf.a0), -1.0, 1.0);
+    const double y = std::clamp((2.0 * s1 - leaf.a1 - leaf.b1) / (leaf.b1 - leaf.a1), -1.0, 1.0);
+    double tx[kStoreDegree + 1], ty[kStoreDegree + 1];
+    chebyshev(x, leaf.n0, tx);
+    chebyshev(y, leaf.n1, ty);
+    double acc[kChannels] = {};
+    const double* c = coeff_.data() + leaf.offset;
+    for (int l = 0; l <= leaf.n1; ++l) {
+      double row[kChannels] = {};
+      const int len = leaf.row_len[static_cast<std::size_t>(l)];
+      for (int k = 0; k < len; ++k, c += kChannels)
+        for (int j = 0; j < kChannels; ++j) row[j] += tx[k] * c[j];
+      for (int j = 0; j < kChannels; ++j) acc[j] += ty[l] * row[j];
+    }
+    for (int j = 0; j < kChannels; ++j) v[j] = acc[j];
+  }
+
+  static std::size_t locate(const std::vector<double>& breaks, double u) {
+    const auto it = std::upper_bound(breaks.begin() + 1, breaks.end() - 1, u);
+    return static_cast<std::size_t>(it - breaks.begin()) - 1;
+  }
+
+  static void chebyshev(double x, int n, double* t) {
+    t[0] = 1.0;
+    if (n >= 1) t[1] = x;
+    for (int k = 2; k <= n; ++k) t[k] = 2.0 * x * t[k - 1] - t[k - 2];
+  }
+
+  // --- Root cells -------------------------------------------------------------------------------
+
+  // The cells of one coordinate over [lo, hi]: graded cells of the given widths on both sides of
+  // every singular point (ascending, inside (lo, hi]), linear cells between them no wider than
+  // kRatio times their distance from the nearest one.
+  static std::vector<Axis> axis_cells(double lo, double hi, const std::vector<double>& singular,
+                                      const std::vector<double>& widths, int power) {
+    std::vector<Axis> out;
+    std::vector<std::pair<double, double>> gaps;
+    double from = lo;
+    for (std::size_t i = 0; i < singular.size(); ++i) {
+      const double s = singular[i];
+      const double prev = i == 0 ? lo : singular[i - 1];
+      const double next = i + 1 == singular.size() ? hi : singular[i + 1];
+      const double left = std::min(widths[i], (i == 0 ? 1.0 : 0.5) * (s - prev));
+      const double right = std::min(widths[i], (i + 1 == singular.size() ? 1.0 : 0.5) * (next - s));
+      if (left > 0.0) {
+        gaps.push_back({from, s - left});
+        out.push_back(Axis{s - left, s, power, true});
+      }
+      if (right > 0.0) out.push_back(Axis{s, s + right, power, false});
+      from = s + right;
+    }
+    gaps.push_back({from, hi});
+    auto distance = [&](double u) {
+      double d = HUGE_VAL;
+      for (double s : singular) d = std::min(d, std::fabs(u - s));
+      return d;
+    };
+    for (auto [a, e] : gaps) {
+      std::vector<std::pair<double, double>> stack = {{a, e}};
+      while (!stack.empty()) {
+        const auto [x, y] = stack.back();
+        stack.pop_back();
+        if (!(y > x)) continue;
+        const double dx = distance(x), dy = distance(y);
+        if (y - x > kRatio * std::min(dx, dy) && y - x > 1e-3) {
+          const double m = dx < dy ? x + (y - x) / 3.0 : y - (y - x) / 3.0;
+          stack.push_back({x, m});
+          stack.push_back({m, y});
+        } else {
+          out.push_back(Axis{x, y, 1, true});
+        }
+      }
+    }
+    std::sort(out.begin(), out.end(), [](const Axis& p, const Axis& r) { return p.lo < r.lo; });
+    return out;
+  }
+
+  // The cells of the angle about a corner, [-pi, pi], graded towards every singular direction
+  // (ascending, the first -pi, standing for pi too).
+  static std::vector<Axis> angle_cells(const std::vector<double>& dirs, int power) {
+    std::vector<Axis> out;
+    for (std::size_t i = 0; i < dirs.size(); ++i) {
+      const double a = dirs[i], b = i + 1 < dirs.size() ? dirs[i + 1] : M_PI;
+      const double g = std::min(0.5 * (b - a), kCornerAngle);
+      out.push_back(Axis{a, a + g, power, false});
+      const int parts = static_cast<int>(std::ceil((b - a - 2.0 * g) / (0.5 * M_PI) - 1e-9));
+      for (int k = 0; k < parts; ++k)
+        out.push_back(Axis{a + g + (b - a - 2.0 * g) * k / parts,
+                           a + g + (b - a - 2.0 * g) * (k + 1) / parts, 1, true});
+      out.push_back(Axis{b - g, b, power, true});
+    }
+    return out;
+  }
+
+  // The quarter turn of the ellipse's reference angle: the rim's normal and the physical direction
+  // turn on the scale atanh(min(q, 1/q)) about the axes (branch points that far off the real
+  // line), so the cells are graded geometrically towards both ends at that scale when it is
+  // small.
+  std::vector<Axis> reference_quarter() const {
+    const double scale = std::atanh(std::min(q_, 1.0 / q_));
+    std::vector<double> b = {0.0, 0.5 * M_PI};
+    if (scale < kSqueeze)
+      for (double w = scale; w < 0.25 * M_PI; w *= 3.0) {
+        b.push_back(w);
+        b.push_back(0.5 * M_PI - w);
+      }
+    std::sort(b.begin(), b.end());
+    std::vector<Axis> out;
+    for (std::size_t i = 0; i + 1 < b.size(); ++i) out.push_back(Axis{b[i], b[i + 1], 1, true});
+    return out;
+  }
+
+  void add_patch(Patch p, const std::vector<Axis>& c0, const std::vector<Axis>& c1,
+                 const std::function<bool(const Axis&, const Axis&)>& skip = {}) {
+    for (const Axis& a : c0) p.breaks0.push_back(a.lo);
+    p.breaks0.push_back(c0.back().hi);
+    for (const Axis& a : c1) p.breaks1.push_back(a.lo);
+    p.breaks1.push_back(c1.back().hi);
+    const int index = static_cast<int>(patches_.size());
+    for (const Axis& a : c0)
+      for (const Axis& b : c1) {
+        if (skip && skip(a, b)) {
+          p.roots.push_back(-1);
+          continue;
+        }
+        p.roots.push_back(static_cast<int>(roots_.size()));
+        roots_.push_back(Root{index, a, b, static_cast<int>(tree_.size())});
+        tree_.push_back(TreeNode{});
+      }
+    patches_.push_back(std::move(p));
+  }
+
+  void make_roots() {
+    // The lines |x| = B (rectangle) or P = B (ellipse) where sigma0 jumps or kinks, and the rim.
+    // A table's every sample is a kink (its interpolant is only C^1 there): beyond a few, only
+    // its steps are graded and the kinks left to the cells' degrees.
+    std::vector<double> lines;
+    const std::vector<double> breaks = law_.breakpoints();
+    for (double b : breaks.size() <= kMaxGradedBreaks ? breaks : law_.steps())
+      if (b > 0.0 && b < 1.0) lines.push_back(b);
+    lines.push_back(1.0);
+    std::sort(lines.begin(), lines.end());
+    const bool ring = law_.kind == PressureKind::Ring;
+    const int power = ring ? 4 : 3, corner_power = ring ? 6 : 3;
+    const double max_r = kind_ == SpotKind::Ellipse ? std::max(1.0, q_) : std::hypot(1.0, q_);
+    const double far = kNear * max_r;
+    const std::vector<Axis> quarter = {Axis{0.0, 0.5 * M_PI, 1, true}};
+    const std::vector<Axis> inverse = {Axis{0.0, 1.0 / far, 1, true}};
+    if (kind_ == SpotKind::Ellipse) {
+      // The polar patch reaches every point nearer than R_near.
+      near_ = far / std::min(1.0, q_);
+      add_patch(Patch(Coords::Polar),
+                axis_cells(0.0, near_, lines, std::vector<double>(lines.size(), kGraded), power),
+                reference_quarter());
+      add_patch(Patch(Coords::Far), inverse, quarter);
+      return;
+    }
+    // The corners (x, q) of the lines with the edge y = q, each the centre of a disk of polar
+    // coordinates reaching halfway to the next singular line.
+    near_ = far;
+    std::vector<Patch> corners;
+    std::vector<double> widths;
+    double y_width = kGraded;
+    for (double x : lines) {
+      double radius = std::min(kCornerRadius, q_);
+      for (double o : lines) {
+        if (o != x) radius = std::min(radius, 0.5 * std::fabs(o - x));
+        radius = std::min(radius, 0.5 * (o + x));  // the mirror image -o
+      }
+      corners.push_back(Patch(Coords::Corner, x, q_, radius));
+      widths.push_back(std::min(kGraded, kCornerInset * radius));
+      y_width = std::min(y_width, kCornerInset * radius);
+    }
+    auto in_a_corner = [&](const Axis& a, const Axis& b) {
+      for (const Patch& c : corners) {
+        bool all = true;
+        for (double X : {a.lo, a.hi})
+          for (double Y : {b.lo, b.hi}) all = all && std::hypot(X - c.x0, Y - c.y0) < c.radius;
+        if (all) return true;
+      }
+      return false;
+    };
+    add_patch(Patch(Coords::Box), axis_cells(0.0, near_, lines, widths, power),
+              axis_cells(0.0, near_, {q_}, {y_width}, power), in_a_corner);
+    add_patch(Patch(Coords::Far), inverse, quarter);
+    for (const Patch& c : corners) {
+      std::vector<double> dirs = {-M_PI, -0.5 * M_PI};  // along the edge inwards, down the line
+      if (c.x0 < 1.0) dirs.push_back(0.0);              // the edge goes on outwards
+      add_patch(c, {Axis{0.0, c.radius, corner_power, false}}, angle_cells(dirs, power));
+    }
+  }
+
+  // --- The build --------------------------------------------------------------------------------
+
+  using Values = std::array<double, kChannels>;
+
+  // The Chebyshev coefficients of one box: (n1 + 1) rows of (n0 + 1), each kChannels wide.
+  struct Series {
+    int n0 = 0, n1 = 0;
+    std::vector<Values> c;
+    const Values& at(int k, int l) const { return c[static_cast<std::size_t>(l * (n0 + 1) + k)]; }
+    Values& at(int k, int l) { return c[static_cast<std::size_t>(l * (n0 + 1) + k)]; }
+  };
+
+  // A box of a root, in its s-coordinates, sampled on the extreme points of degree (n0, n1).
+  struct Cell {
+    int root;
+    double a0, b0, a1, b1;
+    int n0, n1;
+    std::vector<Values> values;  // (n1 + 1) x (n0 + 1), row j = point y_j
+    std::vector<char> known;
+    Values check{};
+    bool check_known = false;
+    int depth = 0;
+    int tree;  // its node in tree_
+  };
+
+  static double node(int i, int n) {
+    if (2 * i == n) return 0.0;
+    return i == 0 ? 1.0 : i == n ? -1.0 : std::cos(M_PI * i / n);
+  }
+  static double lerp(double a, double b, double x) {
+    return x == 1.0 ? b : x == -1.0 ? a : 0.5 * (a + b) + 0.5 * (b - a) * x;
+  }
+
+  // The discrete Chebyshev transform on the extreme points of degree n (a multiple of 8 up to
+  // 64): coefficient k of the interpolant is sum_i M[k][i] f(x_i).
+  static const std::vector<double>& dct_matrix(int n) {
+    static const std::vector<double> m[] = {make_dct(8),  make_dct(16), make_dct(24), make_dct(32),
+                                            make_dct(40), make_dct(48), make_dct(56), make_dct(64)};
+    return m[n / 8 - 1];
+  }
+  static std::vector<double> make_dct(int n) {
+    std::vector<double> m(static_cast<std::size_t>((n + 1) * (n + 1)));
+    for (int k = 0; k <= n; ++k)
+      for (int i = 0; i <= n; ++i) {
+        const double w = (i == 0 || i == n) ? 0.5 : 1.0;
+        m[static_cast<std::size_t>(k * (n + 1) + i)] =
+            w * std::cos(M_PI * static_cast<double>((k * i) % (2 * n)) / n) *
+            ((k == 0 || k == n) ? 1.0 : 2.0) / n;
+      }
+    return m;
+  }
+
+  static Series transform(const std::vector<Values>& values, int n0, int n1) {
+    Series tmp{n0, n1, std::vector<Values>(values.size())}, out = tmp;
+    const std::vector<double>& m0 = dct_matrix(n0);
+    const std::vector<double>& m1 = dct_matrix(n1);
+    for (int j = 0; j <= n1; ++j)
+      for (int k = 0; k <= n0; ++k) {
+        Values s{};
+        for (int i = 0; i <= n0; ++i) {
+          const double w = m0[static_cast<std::size_t>(k * (n0 + 1) + i)];
+          const Values& f = values[static_cast<std::size_t>(j * (n0 + 1) + i)];
+          for (std::size_t ch = 0; ch < kChannels; ++ch) s[ch] += w * f[ch];
+        }
+        tmp.at(k, j) = s;
+      }
+    for (int l = 0; l <= n1; ++l)
+      for (int k = 0; k <= n0; ++k) {
+        Values s{};
+        for (int j = 0; j <= n1; ++j) {
+          const double w = m1[static_cast<std::size_t>(l * (n1 + 1) + j)];
+          const Values& f = tmp.at(k, j);
+          for (std::size_t ch = 0; ch < kChannels; ++ch) s[ch] += w * f[ch];
+        }
+        out.at(k, l) = s;
+      }
+    return out;
+  }
+
+  // A series' values on the extreme points of its own degree over the sub-box [x0, x1] x [y0, y1]
+  // of local coordinates: with transform(), its exact re-expansion there.
+  static std::vector<Values> resample(const Series& s, double x0, double x1, double y0, double y1) {
+    const int m0 = s.n0, m1 = s.n1;
+    std::vector<Values> rows(static_cast<std::size_t>((m0 + 1) * (s.n1 + 1)));
+    std::vector<double> t(static_cast<std::size_t>(std::max(s.n0, s.n1) + 1));
+    for (int i = 0; i <= m0; ++i) {
+      chebyshev(lerp(x0, x1, node(i, m0)), s.n0, t.data());
+      for (int l = 0; l <= s.n1; ++l) {
+        Values r{};
+        for (int k = 0; k <= s.n0; ++k) {
+          const Values& c = s.at(k, l);
+          for (std::size_t ch = 0; ch < kChannels; ++ch)
+            r[ch] += t[static_cast<std::size_t>(k)] * c[ch];
+        }
+        rows[static_cast<std::size_t>(l * (m0 + 1) + i)] = r;
+      }
+    }
+    std::vector<Values> out(static_cast<std::size_t>((m0 + 1) * (m1 + 1)));
+    for (int j = 0; j <= m1; ++j) {
+      chebyshev(lerp(y0, y1, node(j, m1)), s.n1, t.data());
+      for (int i = 0; i <= m0; ++i) {
+        Values v{};
+        for (int l = 0; l <= s.n1; ++l) {
+          const Values& r = rows[static_cast<std::size_t>(l * (m0 + 1) + i)];
+          for (std::size_t ch = 0; ch < kChannels; ++ch)
+            v[ch] += t[static_cast<std::size_t>(l)] * r[ch];
+        }
+        out[static_cast<std::size_t>(j * (m0 + 1) + i)] = v;
+      }
+    }
+    return out;
+  }
+
+  static Values sum(const Series& s, double x, double y) {
+    std::vector<double> tx(static_cast<std::size_t>(s.n0 + 1)),
+        ty(static_cast<std::size_t>(s.n1 + 1));
+    chebyshev(x, s.n0, tx.data());
+    chebyshev(y, s.n1, ty.data());
+    Values v{};
+    for (int l = 0; l <= s.n1; ++l)
+      for (int k = 0; k <= s.n0; ++k)
+        for (std::size_t ch = 0; ch < kChannels; ++ch)
+          v[ch] +=
+              tx[static_cast<std::size_t>(k)] * ty[static_cast<std::size_t>(l)] * s.at(k, l)[ch];
+    return v;
+  }
+
+  struct Builder {
+    SpotIntegralTable& t;
+    const SpotIntegrator& integrate;
+    const RectStripIntegrator& strips;
+    const std::function<bool()>& stop;
+    const SpotParallelFor& parallel;
+
+    static constexpr double kCheckX = 0.2871, kCheckY = -0.6233;  // between the extreme points
+
+    // A point by its patch and patch coordinates: cells that share an edge share its points.
+    struct Key {
+      int patch;
+      double u0, u1;
+      bool operator==(const Key& o) const { return patch == o.patch && u0 == o.u0 && u1 == o.u1; }
+    };
+    struct KeyHash {
+      std::size_t operator()(const Key& k) const {
+        std::uint64_t a, b;
+        std::memcpy(&a, &k.u0, sizeof a);
+        std::memcpy(&b, &k.u1, sizeof b);
+        std::uint64_t z = a ^ (b * 0x9e3779b97f4a7c15ULL) ^ static_cast<std::uint64_t>(k.patch);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+        return static_cast<std::size_t>(z ^ (z >> 31));
+      }
+    };
+    std::unordered_map<Key, Values, KeyHash> known;
+
+    void run() {
+      t.make_roots();
+      std::vector<Cell> pending;
+      for (std::size_t r = 0; r < t.roots_.size(); ++r) {
+        Cell c;
+        c.root = static_cast<int>(r);
+        c.a0 = c.a1 = -1.0;
+        c.b0 = c.b1 = 1.0;
+        c.n0 = c.n1 = kStartDegree;
+        c.tree = t.roots_[r].tree;
+        resize(c);
+        pending.push_back(std::move(c));
+      }
+      while (!pending.empty()) {
+        evaluate_points(pending);
+        std::vector<Cell> next;
+        for (Cell& c : pending) decide(c, next);
+        pending = std::move(next);
+      }
+      t.stats_.pieces = t.leaves_.size();
+      t.stats_.coefficients = t.coeff_.size() / kChannels;
+    }
+
+    static void resize(Cell& c) {
+      c.values.assign(static_cast<std::size_t>((c.n0 + 1) * (c.n1 + 1)), Values{});
+      c.known.assign(c.values.size(), 0);
+    }
+
+    Key key_of(const Cell& c, double x, double y) const {
+      const Root& root = t.roots_[static_cast<std::size_t>(c.root)];
+      Key k{root.patch, root.a0.at(lerp(c.a0, c.b0, x)), root.a1.at(lerp(c.a1, c.b1, y))};
+      const Coords coords = t.patches_[static_cast<std::size_t>(k.patch)].coords;
+      if (k.u0 == 0.0 && (coords == Coords::Polar || coords == Coords::Corner))
+        k.u1 = 0.0;  // the pole: one point for every angle
+      return k;
+    }
+
+    Values value_at(const Key& k) const {
+      const Patch& patch = t.patches_[static_cast<std::size_t>(k.patch)];
+      if (patch.coords == Coords::Far && k.u0 == 0.0) return t.far_limit(k.u1);
+      double cx = 0.0, cy = 0.0;
+      t.centre(patch, k.u0, k.u1, cx, cy);
+      const bool by_strips = t.kind_ == SpotKind::Rect && t.law_.kind != PressureKind::Ring;
+      const SpotIntegrals v = by_strips ? strips(cx, cy) : integrate(cx, cy);
+      Values out;
+      for (std::size_t w = 0; w < 3; ++w) {
+        out[w] = v.ex[w];
+        out[3 + w] = v.ey[w];
+        out[6 + w] = v.x_ey[w];
+        out[9 + w] = v.y_ex[w];
+      }
+      return out;
+    }
+
+    // Computes every point the cells still lack (and their check points), in parallel.
+    void evaluate_points(std::vector<Cell>& cells) {
+      std::vector<Key> jobs;
+      std::unordered_map<Key, std::size_t, KeyHash> queued;
+      auto want = [&](const Key& k) {
+        if (known.count(k) == 0 && queued.emplace(k, jobs.size()).second) jobs.push_back(k);
+      };
+      for (Cell& c : cells) {
+        for (int i1 = 0; i1 <= c.n1; ++i1)
+          for (int i0 = 0; i0 <= c.n0; ++i0)
+            if (!c.known[static_cast<std::size_t>(i1 * (c.n0 + 1) + i0)])
+              want(key_of(c, node(i0, c.n0), node(i1, c.n1)));
+        if (!c.check_known) want(key_of(c, kCheckX, kCheckY));
+      }
+      std::vector<Values> values(jobs.size());
+      std::atomic<bool> stopped{false};
+      parallel(jobs.size(), [&](std::size_t i) {
+        if (stopped.load(std::memory_order_relaxed)) return;
+        if (stop && stop()) {
+          stopped = true;
+          return;
+        }
+        values[i] = value_at(jobs[i]);
+      });
+      if (stopped) throw SpotTableBuildStopped();
+      t.stats_.points += jobs.size();
+      for (std::size_t i = 0; i < jobs.size(); ++i) known.emplace(jobs[i], values[i]);
+      for (Cell& c : cells) {
+        for (int i1 = 0; i1 <= c.n1; ++i1)
+          for (int i0 = 0; i0 <= c.n0; ++i0) {
+            const std::size_t k = static_cast<std::size_t>(i1 * (c.n0 + 1) + i0);
+            if (!c.known[k]) c.values[k] = known.at(key_of(c, node(i0, c.n0), node(i1, c.n1)));
+            c.known[k] = 1;
+          }
+        if (!c.check_known) c.check = known.at(key_of(c, kCheckX, kCheckY));
+        c.check_known = true;
+      }
+    }
+
+    // The largest coefficient of every degree along one direction, relative to A0.
+    std::vector<double> profile(const Series& s, int dir) const {
+      std::vector<double> m(static_cast<std::size_t>((dir == 0 ? s.n0 : s.n1) + 1), 0.0);
+      for (int l = 0; l <= s.n1; ++l)
+        for (int k = 0; k <= s.n0; ++k)
+          for (std::size_t ch = 0; ch < kChannels; ++ch) {
+            double& slot = m[static_cast<std::size_t>(dir == 0 ? k : l)];
+            slot = std::max(slot, std::fabs(s.at(k, l)[ch]) / t.A0_);
+          }
+      return m;
+    }
+
+    // The last coefficients along one direction and their rate of decay over the upper half.
+    static std::pair<double, double> tail_and_rate(const std::vector<double>& m) {
+      const std::size_t n = m.size() - 1;
+      const double tail = std::max(m[n], m[n - 1]);
+      const double top = std::max(m[n / 2], m[n / 2 + 1]);
+      const double rate = std::pow(std::max(tail, 1e-300) / std::max(top, 1e-300),
+                                   1.0 / (0.5 * static_cast<double>(n) - 1.0));
+      return {tail, rate};
+    }
+
+    // The interpolation error along one direction: the last coefficients summed over a tail that
+    // decays geometrically at that rate.
+    static double error_estimate(const std::vector<double>& m) {
+      const auto [tail, rate] = tail_and_rate(m);
+      const double r = std::min(kMaxRate, rate);
+      return tail * std::max(1.0, 2.0 * r / (1.0 - r));
+    }
+
+    // The next degree: a multiple of n (so that the points nest) where the coefficients,
+    // extrapolated at that rate, fall below the tolerance.
+    static int next_degree(const std::vector<double>& m, int n) {
+      const auto [tail, rate] = tail_and_rate(m);
+      const double more =
+          rate < 0.95 ? std::log(tail / kSampleTolerance) / -std::log(rate) : HUGE_VAL;
+      const double want = (n + more) * kSafety + 1.0;
+      int next = 2 * n;
+      while (next < want && next + n <= kMaxSampleDegree) next += n;
+      return std::min(next, kMaxSampleDegree);
+    }
+
+    void decide(Cell& c, std::vector<Cell>& next) {
+      const Series s = transform(c.values, c.n0, c.n1);
+      const int n0 = c.n0, n1 = c.n1;
+      const std::vector<double> m0 = profile(s, 0), m1 = profile(s, 1);
+      const double e0 = error_estimate(m0), e1 = error_estimate(m1);
+      const Values at = sum(s, kCheckX, kCheckY);
+      double miss = 0.0;
+      for (std::size_t ch = 0; ch < kChannels; ++ch)
+        miss = std::max(miss, std::fabs(at[ch] - c.check[ch]) / t.A0_);
+      bool bad0 = e0 > kSampleTolerance, bad1 = e1 > kSampleTolerance;
+      if (!bad0 && !bad1 && miss > kCheckTolerance) {
+        bad0 = n0 >= n1;
+        bad1 = n1 >= n0;
+      }
+      if ((!bad0 && !bad1) || c.depth >= kMaxDepth) {
+        t.stats_.estimate = std::max(t.stats_.estimate, std::max({e0, e1, miss}));
+        t.store_cell(c, s);
+        return;
+      }
+      if ((bad0 && n0 < kMaxSampleDegree) || (bad1 && n1 < kMaxSampleDegree)) {
+        Cell d = c;
+        d.n0 = bad0 && n0 < kMaxSampleDegree ? next_degree(m0, n0) : n0;
+        d.n1 = bad1 && n1 < kMaxSampleDegree ? next_degree(m1, n1) : n1;
+        resize(d);
+        const int f0 = d.n0 / n0, f1 = d.n1 / n1;
+        for (int j = 0; j <= n1; ++j)
+          for (int i = 0; i <= n0; ++i) {
+            const std::size_t k = static_cast<std::size_t>(j * f1 * (d.n0 + 1) + i * f0);
+            d.values[k] = c.values[static_cast<std::size_t>(j * (n0 + 1) + i)];
+            d.known[k] = 1;
+          }
+        next.push_back(std::move(d));
+        return;
+      }
+      for (Cell& p : t.split(c, bad0, bad1)) {
+        p.depth = c.depth + 1;
+        p.check_known = false;
+        if (bad0) p.n0 = 2 * kStartDegree;
+        if (bad1) p.n1 = 2 * kStartDegree;
+        resize(p);
+        next.push_back(std::move(p));
+      }
+    }
+  };
+
+  // Halves a box in its tree along the marked directions; the parts keep everything else.
+  std::vector<Cell> split(const Cell& c, bool s0, bool s1) {
+    std::vector<Cell> parts = {c};
+    parts[0].values.clear();
+    parts[0].known.clear();
+    for (int dir = 0; dir < 2; ++dir) {
+      if (!(dir == 0 ? s0 : s1)) continue;
+      std::vector<Cell> out;
+      for (Cell& p : parts) {
+        const double a = dir == 0 ? p.a0 : p.a1, b = dir == 0 ? p.b0 : p.b1;
+        const double mid = 0.5 * (a + b);
+        TreeNode& n = tree_[static_cast<std::size_t>(p.tree)];
+        n.dir = dir;
+        n.mid = mid;
+        for (int side = 0; side < 2; ++side) {
+          Cell h = p;
+          (dir == 0 ? h.a0 : h.a1) = side == 0 ? a : mid;
+          (dir == 0 ? h.b0 : h.b1) = side == 0 ? mid : b;
+          h.tree = static_cast<int>(tree_.size());
+          tree_[static_cast<std::size_t>(p.tree)].child[side] = h.tree;
+          tree_.push_back(TreeNode{});
+          out.push_back(std::move(h));
+        }
+      }
+      parts = std::move(out);
+    }
+    return parts;
+  }
+
+  // Stores a sampled box as pieces of degree <= kStoreDegree: its series re-expanded exactly on
+  // halves (no new samples) until the coefficients beyond that degree sum to less than half
+  // kStoreTolerance in every channel.
+  void store_cell(const Cell& c, const Series& s) {
+    struct Part {
+      double x0, x1, y0, y1;  // in the cell's local coordinates
+      int tree;
+    };
+    std::vector<Part> stack = {{-1.0, 1.0, -1.0, 1.0, c.tree}};
+    while (!stack.empty()) {
+      const Part p = stack.back();
+      stack.pop_back();
+      const bool whole = p.x0 == -1.0 && p.x1 == 1.0 && p.y0 == -1.0 && p.y1 == 1.0;
+      const Series r = whole ? s : transform(resample(s, p.x0, p.x1, p.y0, p.y1), s.n0, s.n1);
+      double drop0 = 0.0, drop1 = 0.0;
+      for (std::size_t ch = 0; ch < kChannels; ++ch) {
+        double d0 = 0.0, d1 = 0.0;
+        for (int l = 0; l <= r.n1; ++l)
+          for (int k = 0; k <= r.n0; ++k) {
+            if (k > kStoreDegree)
+              d0 += std::fabs(r.at(k, l)[ch]);
+            else if (l > kStoreDegree)
+              d1 += std::fabs(r.at(k, l)[ch]);
+          }
+        drop0 = std::max(drop0, d0 / A0_);
+        drop1 = std::max(drop1, d1 / A0_);
+      }
+      const bool cut0 = drop0 > 0.25 * kStoreTolerance, cut1 = drop1 > 0.25 * kStoreTolerance;
+      if (!cut0 && !cut1) {
+        store(c, p.x0, p.x1, p.y0, p.y1, p.tree, r);
+        continue;
+      }
+      Cell box = c;
+      box.a0 = lerp(c.a0, c.b0, p.x0);
+      box.b0 = lerp(c.a0, c.b0, p.x1);
+      box.a1 = lerp(c.a1, c.b1, p.y0);
+      box.b1 = lerp(c.a1, c.b1, p.y1);
+      box.tree = p.tree;
+      const std::vector<Cell> halves = split(box, cut0, cut1);
+      const double xm = 0.5 * (p.x0 + p.x1), ym = 0.5 * (p.y0 + p.y1);
+      std::size_t h = 0;
+      for (int k = 0; k < (cut0 ? 2 : 1); ++k)
+        for (int i = 0; i < (cut1 ? 2 : 1); ++i, ++h) {
+          Part q{p.x0, p.x1, p.y0, p.y1, halves[h].tree};
+          if (cut0) (k == 0 ? q.x1 : q.x0) = xm;
+          if (cut1) (i == 0 ? q.y1 : q.y0) = ym;
+          stack.push_back(q);
+        }
+    }
+  }
+
+  // One piece: the series cut to kStoreDegree, and per row the coefficients beyond the last one
+  // that matters dropped while what is dropped sums to less than half kStoreTolerance.
+  void store(const Cell& c, double x0, double x1, double y0, double y1, int tree, const Series& r) {
+    Leaf leaf{lerp(c.a0, c.b0, x0),
+              lerp(c.a0, c.b0, x1),
+              lerp(c.a1, c.b1, y0),
+              lerp(c.a1, c.b1, y1),
+              0,
+              0,
+              coeff_.size(),
+              {}};
+    const int n0 = std::min(r.n0, kStoreDegree), n1 = std::min(r.n1, kStoreDegree);
+    double floor = 0.5 * kStoreTolerance * A0_;
+    std::vector<int> len;
+    for (;;) {
+      len.assign(static_cast<std::size_t>(n1 + 1), 0);
+      double dropped[kChannels] = {};
+      for (int l = 0; l <= n1; ++l)
+        for (int k = n0; k >= 0; --k) {
+          bool keep = false;
+          for (std::size_t ch = 0; ch < kChannels; ++ch)
+            keep = keep || std::fabs(r.at(k, l)[ch]) > floor;
+          if (keep) {
+            len[static_cast<std::size_t>(l)] = k + 1;
+            break;
+          }
+          for (std::size_t ch = 0; ch < kChannels; ++ch) dropped[ch] += std::fabs(r.at(k, l)[ch]);
+        }
+      if (*std::max_element(dropped, dropped + kChannels) <= 0.5 * kStoreTolerance * A0_) break;
+      floor *= 0.25;
+    }
+    int rows = 1;
+    for (int l = 0; l <= n1; ++l)
+      if (len[static_cast<std::size_t>(l)] > 0) rows = l + 1;
+    len.resize(static_cast<std::size_t>(rows));
+    len[0] = std::max(len[0], 1);
+    leaf.n1 = rows - 1;
+    leaf.n0 = *std::max_element(len.begin(), len.end()) - 1;
+    leaf.row_len = len;
+    for (int l = 0; l < rows; ++l)
+      for (int k = 0; k < len[static_cast<std::size_t>(l)]; ++k)
+        for (std::size_t ch = 0; ch < kChannels; ++ch) coeff_.push_back(r.at(k, l)[ch]);
+    tree_[static_cast<std::size_t>(tree)].leaf = static_cast<int>(leaves_.size());
+    leaves_.push_back(std::move(leaf));
+  }
+
+  SpotKind kind_;
+  PressureLaw<double> law_;
+  double q_;
+  double A0_ = 1.0, Axx_ = 0.0, Ayy_ = 0.0;
+  double near_ = 0.0;           // the polar patch's radius P_near, or the box's side R_near
+  std::vector<Patch> patches_;  // ellipse: polar, far; rectangle: box, far, corners
+  std::vector<Root> roots_;
+  std::vector<TreeNode> tree_;
+  std::vector<Leaf> leaves_;
+  std::vector<double> coeff_;
+  Stats stats_;
+};
+
+}  // namespace frictionid::model

@@ -1,0 +1,446 @@
+// The tabulated spot integrals (spot_integral_table.hpp) against the ray integration of
+// spot_integrals.hpp over the whole plane of the centre of rotation, the closed forms at the
+// centre, the sliding limit far away, the symmetries the table relies on, and its build.
+//
+// The reference is SpotIntegrator at its fine angular rule: the default rule errs by up to 5e-9
+// A0 within 1e-4 of a rectangle's corner. Far away (|c| > 50 max|r|) its rays, of length |c|,
+// carry positions to only ~1e-16 |c|, so there the reference is a product quadrature about the
+// spot's centre instead, where the integrand is smooth.
+#include <frictionid/model/spot_integral_table.hpp>
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <frictionid/model/contact_spot.hpp>
+#include <frictionid/model/gauss_legendre_rule.hpp>
+#include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model/spot_integrals.hpp>
+#include <frictionid/model/tanh_sinh_rule.hpp>
+
+#include "model/spot_cases.hpp"
+
+namespace frictionid::model {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kTolerance = 1e-10;  // of A0, every channel
+
+struct NamedLaw {
+  std::string name;
+  PressureLaw<double> law;
+};
+
+std::vector<NamedLaw> laws() {
+  return {{"uniform", PressureLaw<double>::uniform()},
+          {"hertz", PressureLaw<double>::hertz()},
+          {"parabolic", PressureLaw<double>::parabolic()},
+          {"annulus:0.5", PressureLaw<double>::annulus(0.5)}};
+}
+
+std::array<double, 12> channels(const SpotIntegrals& v) {
+  std::array<double, 12> out{};
+  for (std::size_t w = 0; w < 3; ++w) {
+    out[w] = v.ex[w];
+    out[3 + w] = v.ey[w];
+    out[6 + w] = v.x_ey[w];
+    out[9 + w] = v.y_ex[w];
+  }
+  return out;
+}
+
+using testing::spot_cases::Uniform;
+
+double max_radius(SpotKind kind, double q) {
+  return kind == SpotKind::Rect ? std::hypot(1.0, q) : std::max(1.0, q);
+}
+
+// Centres of rotation over the whole plane: the near field, within 1e-8..1e-1 of the rim or an
+// edge (either side), next to the rectangle's corners, on the annulus' step, and far away up to
+// |c| = 1e6.
+std::vector<std::array<double, 2>> sample_centres(SpotKind kind, double q, int count,
+                                                  std::uint64_t seed) {
+  Uniform u(seed);
+  std::vector<std::array<double, 2>> out = {{0.0, 0.0}};
+  for (int i = 1; i < count; ++i) {
+    const double near = std::pow(10.0, u.in(-8.0, -1.0));  // distance to a line
+    double x = 0.0, y = 0.0;
+    switch (i % 6) {
+      case 0:
+      case 1:  // near field
+        x = u.in(-3.0, 3.0);
+        y = q * u.in(-3.0, 3.0);
+        break;
+      case 2:  // next to the rim, an edge |x| = 1 or a step at 0.5
+        if (kind == SpotKind::Ellipse) {
+          const double t = u.in(-kPi, kPi), r = (i % 12 == 2 ? 0.5 : 1.0) + u.sign() * near;
+          x = r * std::cos(t);
+          y = q * r * std::sin(t);
+        } else {
+          x = u.sign() * ((i % 12 == 2 ? 0.5 : 1.0) + u.sign() * near);
+          y = q * u.in(-1.2, 1.2);
+        }
+        break;
+      case 3:  // next to the rim or an edge y = +-q
+        if (kind == SpotKind::Ellipse) {
+          const double t = u.in(-kPi, kPi), r = 1.0 + u.sign() * near;
+          x = r * std::cos(t);
+          y = q * r * std::sin(t);
+        } else {
+          x = u.in(-1.2, 1.2);
+          y = u.sign() * q * (1.0 + u.sign() * near);
+        }
+        break;
+      case 4: {  // next to a corner (the rectangle) or the rim's ends of the axes
+        const double cx = (i % 12 == 4 ? 0.5 : 1.0), d = std::pow(10.0, u.in(-8.0, -1.0));
+        x = u.sign() * (cx + d * u.in(-1.0, 1.0));
+        y = u.sign() * q * (1.0 + near * u.in(-1.0, 1.0));
+        break;
+      }
+      default: {  // far away
+        const double r = max_radius(kind, q) * std::pow(10.0, u.in(0.0, 6.0)), t = u.in(-kPi, kPi);
+        x = r * std::cos(t);
+        y = r * std::sin(t);
+        break;
+      }
+    }
+    out.push_back({x, y});
+  }
+  return out;
+}
+
+// The reference far away: ∫∫ about the spot's centre, where the integrand is smooth, the radius
+// (ellipse) or x (rectangle) by the fine tanh-sinh rule split at the law's breakpoints, the angle
+// by the trapezoidal rule (periodic), y by Gauss–Legendre.
+SpotIntegrals centred_quadrature(SpotKind kind, const PressureLaw<double>& law, double q, double cx,
+                                 double cy) {
+  std::array<double, 12> acc{};
+  auto add = [&](double w, double x, double y) {
+    const double dx = x - cx, dy = y - cy, inv = 1.0 / std::hypot(dx, dy);
+    const double ex = -dy * inv * w, ey = dx * inv * w;
+    const double v[12] = {ex,     x * ex,     y * ex,     ey,     x * ey,     y * ey,
+                          x * ey, x * x * ey, x * y * ey, y * ex, x * y * ex, y * y * ex};
+    for (std::size_t k = 0; k < 12; ++k) acc[k] += v[k];
+  };
+  const std::vector<QuadratureNode> across = make_gauss_legendre_rule(40);
+  const int turns = 720;
+  if (law.kind == PressureKind::Ring) {  // all load on the rim (line density q dtheta or dy)
+    if (kind == SpotKind::Ellipse)
+      for (int k = 0; k < turns; ++k) {
+        const double t = 2.0 * kPi * (k + 0.5) / turns;
+        add(q * 2.0 * kPi / turns, std::cos(t), q * std::sin(t));
+      }
+    else
+      for (double side : {-1.0, 1.0})
+        for (const QuadratureNode& g : across)
+          add(2.0 * q * g.weight, side, q * (g.from_left - g.from_right));
+  }
+  std::vector<double> edges = {0.0};
+  for (double b : law.breakpoints()) edges.push_back(b);
+  edges.push_back(1.0);
+  for (std::size_t s = 0; s + 1 < edges.size(); ++s) {
+    const double a = edges[s], b = edges[s + 1], len = b - a;
+    for (const QuadratureNode& n : fine_rule()) {
+      const double rho = a + len * n.from_left, sigma = law(rho, (1.0 - b) + len * n.from_right);
+      if (sigma == 0.0) continue;
+      if (kind == SpotKind::Ellipse) {
+        for (int k = 0; k < turns; ++k) {
+          const double t = 2.0 * kPi * (k + 0.5) / turns;
+          add(n.weight * len * sigma * q * rho * 2.0 * kPi / turns, rho * std::cos(t),
+              q * rho * std::sin(t));
+        }
+      } else {
+        for (double side : {-1.0, 1.0})
+          for (const QuadratureNode& g : across)
+            add(n.weight * len * sigma * 2.0 * q * g.weight, side * rho,
+                q * (g.from_left - g.from_right));
+      }
+    }
+  }
+  SpotIntegrals out;
+  for (std::size_t w = 0; w < 3; ++w) {
+    out.ex[w] = acc[w];
+    out.ey[w] = acc[3 + w];
+    out.x_ey[w] = acc[6 + w];
+    out.y_ex[w] = acc[9 + w];
+  }
+  return out;
+}
+
+struct Reference {
+  ContactSpot spot;
+  PressureLaw<double> law;
+  double q;
+  SpotIntegrator rays;
+  Reference(const ContactSpot& s, const PressureLaw<double>& l, double aspect,
+            const std::vector<QuadratureNode>* angular = &fine_rule())
+      : spot(s), law(l), q(aspect), rays(s, l, aspect, SpotRules{&radial_rule(), angular}) {}
+  SpotIntegrals operator()(double cx, double cy) const {
+    const SpotKind kind = spot.kind == SpotKind::Rect ? SpotKind::Rect : SpotKind::Ellipse;
+    if (std::hypot(cx, cy) > 50.0 * max_radius(kind, q))
+      return centred_quadrature(kind, law, q, cx, cy);
+    return rays(cx, cy);
+  }
+};
+
+// Tables are built once per spot, aspect and law and shared by the tests.
+const SpotIntegralTable& table_for(const ContactSpot& spot, const NamedLaw& law) {
+  static std::map<std::string, std::unique_ptr<SpotIntegralTable>> tables;
+  const std::string key =
+      std::to_string(static_cast<int>(spot.kind)) + " " + std::to_string(spot.q) + " " + law.name;
+  auto& slot = tables[key];
+  if (!slot) slot = std::make_unique<SpotIntegralTable>(spot, law.law, spot.q);
+  return *slot;
+}
+
+double area(const ContactSpot& spot, const PressureLaw<double>& law, double q) {
+  return spot_moments(spot, law_moments(law), q).A0;
+}
+
+// The worst difference table - reference over the points, relative to A0, with where it is.
+struct Worst {
+  double error = 0.0, cx = 0.0, cy = 0.0;
+  int channel = -1;
+};
+
+Worst compare(const SpotIntegralTable& table, const Reference& reference,
+              const std::vector<std::array<double, 2>>& centres, double A0) {
+  Worst worst;
+  for (const auto& c : centres) {
+    const auto got = channels(table(c[0], c[1])), want = channels(reference(c[0], c[1]));
+    for (std::size_t k = 0; k < 12; ++k) {
+      const double e = std::fabs(got[k] - want[k]) / A0;
+      if (!(e <= worst.error)) worst = {e, c[0], c[1], static_cast<int>(k)};
+    }
+  }
+  return worst;
+}
+
+void expect_agreement(SpotKind kind) {
+  int points = 0;
+  for (double q : {0.4, 1.0, 2.5})
+    for (const auto& l : laws()) {
+      const ContactSpot spot =
+          kind == SpotKind::Rect ? ContactSpot::rect(q) : ContactSpot::ellipse(q);
+      const SpotIntegralTable& table = table_for(spot, l);
+      const auto centres = sample_centres(kind, q, 170, 11);
+      const Worst w = compare(table, Reference(spot, l.law, q), centres, area(spot, l.law, q));
+      EXPECT_LT(w.error, kTolerance) << l.name << " q " << q << ": channel " << w.channel << " at ("
+                                     << w.cx << ", " << w.cy << ")";
+      points += static_cast<int>(centres.size());
+    }
+  EXPECT_GE(points, 2000);
+}
+
+TEST(SpotIntegralTable, EllipsesMatchTheIntegratorWithin1e10OfTheLoadOverThePlane) {
+  expect_agreement(SpotKind::Ellipse);
+}
+
+TEST(SpotIntegralTable, RectanglesMatchTheIntegratorWithin1e10OfTheLoadOverThePlane) {
+  expect_agreement(SpotKind::Rect);
+}
+
+TEST(SpotIntegralTable, OtherLawsMatchTheIntegratorToo) {
+  struct Case {
+    ContactSpot spot;
+    NamedLaw law;
+    const std::vector<QuadratureNode>* angular;
+  };
+  // The ring's rim integral needs a finer angular rule than fine_rule() off q = 1.
+  static const std::vector<QuadratureNode> rim = make_tanh_sinh_rule(1.0 / 64.0, 1e-30);
+  // A table with kinks and a step (on the rectangle: an ellipse's table law costs ~1.4 ms a
+  // point to integrate, 9 s for its table).
+  const testing::spot_cases::LawCase table = testing::spot_cases::kinked_step_table();
+  const std::vector<Case> cases = {
+      {ContactSpot::ellipse(0.7), {"power:1.7", PressureLaw<double>::power(1.7)}, &fine_rule()},
+      {ContactSpot::rect(0.7), {"power:1.7", PressureLaw<double>::power(1.7)}, &fine_rule()},
+      {ContactSpot::ellipse(1.6), {"power:2.5", PressureLaw<double>::power(2.5)}, &fine_rule()},
+      {ContactSpot::ellipse(0.7), {"ring", PressureLaw<double>::ring()}, &rim},
+      {ContactSpot::rect(0.7), {"ring", PressureLaw<double>::ring()}, &rim},
+      {ContactSpot::circle(), {"hertz", PressureLaw<double>::hertz()}, &fine_rule()},
+      {ContactSpot::rect(0.7), {table.name, table.law}, &fine_rule()}};
+  for (const Case& c : cases) {
+    const SpotIntegralTable& table = table_for(c.spot, c.law);
+    const SpotKind kind = c.spot.kind == SpotKind::Rect ? SpotKind::Rect : SpotKind::Ellipse;
+    const auto centres = sample_centres(kind, c.spot.q, 90, 23);
+    const Reference reference(c.spot, c.law.law, c.spot.q, c.angular);
+    const Worst w = compare(table, reference, centres, area(c.spot, c.law.law, c.spot.q));
+    EXPECT_LT(w.error, kTolerance)
+        << c.law.name << " on kind " << static_cast<int>(c.spot.kind) << ": channel " << w.channel
+        << " at (" << w.cx << ", " << w.cy << ")";
+  }
+}
+
+TEST(SpotIntegralTable, EachIntegralIsEvenOrOddInEachCoordinateOfTheCentre) {
+  // Reflecting x turns e_y and the weight x; reflecting y turns e_x and the weight y. Channels:
+  // ex[0..2], ey[0..2], x_ey[0..2], y_ex[0..2].
+  const bool odd_x[12] = {false, true, false, true,  false, true,
+                          false, true, false, false, true,  false};
+  const bool odd_y[12] = {true,  true,  false, false, false, true,
+                          false, false, true,  false, false, true};
+  Uniform u(5);
+  for (const ContactSpot& spot : {ContactSpot::ellipse(0.4), ContactSpot::rect(2.5)})
+    for (const auto& l : {laws()[0], laws()[3]}) {
+      const SpotIntegrator integrate(spot, l.law, spot.q);
+      const SpotIntegralTable& table = table_for(spot, l);
+      const double A0 = area(spot, l.law, spot.q);
+      for (int i = 0; i < 6; ++i) {
+        const double x = u.in(0.05, 2.0), y = spot.q * u.in(0.05, 2.0);
+        const auto base = channels(integrate(x, y));
+        const auto fx = channels(integrate(-x, y)), fy = channels(integrate(x, -y));
+        const auto tx = channels(table(-x, y)), ty = channels(table(x, -y));
+        for (std::size_t k = 0; k < 12; ++k) {
+          EXPECT_NEAR(fx[k], odd_x[k] ? -base[k] : base[k], 1e-13 * A0) << l.name << " ch " << k;
+          EXPECT_NEAR(fy[k], odd_y[k] ? -base[k] : base[k], 1e-13 * A0) << l.name << " ch " << k;
+          EXPECT_NEAR(tx[k], fx[k], kTolerance * A0) << l.name << " ch " << k;
+          EXPECT_NEAR(ty[k], fy[k], kTolerance * A0) << l.name << " ch " << k;
+        }
+      }
+    }
+}
+
+TEST(SpotIntegralTable, AtTheSpotsCentreTheTableTakesTheClosedForms) {
+  // Pure spin about the centre of a uniform disk: ∫ x^2/r dA = pi/3; of the square [-1, 1]^2:
+  // (1/2) ∫ r dA = (2/3)(sqrt 2 + asinh 1). ey[1] = x_ey[0] = that, ex[2] = y_ex[0] = minus it,
+  // every other channel vanishes by symmetry.
+  const double disk = kPi / 3.0, square = 2.0 / 3.0 * (std::sqrt(2.0) + std::asinh(1.0));
+  for (const auto& [spot, value] :
+       {std::pair{ContactSpot::ellipse(1.0), disk}, std::pair{ContactSpot::rect(1.0), square}}) {
+    const SpotIntegralTable& table = table_for(spot, {"uniform", PressureLaw<double>::uniform()});
+    const auto v = channels(table(0.0, 0.0));
+    for (std::size_t k = 0; k < 12; ++k) {
+      const double want = (k == 4 || k == 6) ? value : (k == 2 || k == 9) ? -value : 0.0;
+      EXPECT_NEAR(v[k], want, 1e-11) << "channel " << k;
+    }
+  }
+}
+
+TEST(SpotIntegralTable, OnTheRimEdgesAndCornersTheTableMatchesTheIntegrator) {
+  for (const auto& l : {laws()[0], laws()[1]})
+    for (double q : {0.4, 2.5}) {
+      for (const ContactSpot& spot : {ContactSpot::ellipse(q), ContactSpot::rect(q)}) {
+        const SpotIntegralTable& table = table_for(spot, l);
+        const Reference reference(spot, l.law, q);
+        std::vector<std::array<double, 2>> centres;
+        if (spot.kind == SpotKind::Ellipse) {
+          for (double t : {0.0, 0.3, 1.0, kPi / 2, 2.0, kPi, -0.7})
+            for (double r : {0.5, 1.0}) centres.push_back({r * std::cos(t), q * r * std::sin(t)});
+        } else {
+          for (double x : {0.0, 0.3, 0.5, 0.9, 1.0})
+            for (double y : {0.0, 0.4 * q, q}) {
+              centres.push_back({x, y});
+              centres.push_back({-x, -y});
+            }
+          centres.push_back({1.0, 1.5 * q});
+          centres.push_back({1.5, q});
+        }
+        const Worst w = compare(table, reference, centres, area(spot, l.law, q));
+        EXPECT_LT(w.error, kTolerance)
+            << l.name << " q " << q << " kind " << static_cast<int>(spot.kind) << ": channel "
+            << w.channel << " at (" << w.cx << ", " << w.cy << ")";
+      }
+    }
+}
+
+TEST(SpotIntegralTable, FarAwayTheTableTakesTheSlidingLimit) {
+  // e = (sin gamma, -cos gamma) everywhere as |c| -> inf: ex[0] = A0 sin, ey[0] = -A0 cos,
+  // x_ey[1] = -Axx cos, y_ex[2] = Ayy sin, the rest 0 (the spot is symmetric).
+  for (const ContactSpot& spot : {ContactSpot::ellipse(0.4), ContactSpot::rect(2.5)}) {
+    const PressureLaw<double> law = PressureLaw<double>::hertz();
+    const SpotIntegralTable& table = table_for(spot, {"hertz", law});
+    const SpotMoments<double> m = spot_moments(spot, law_moments(law), spot.q);
+    for (double gamma : {0.0, 0.4, 2.0, -1.0, -2.9})
+      for (double r : {1e14, 1e300}) {
+        const auto v = channels(table(r * std::cos(gamma), r * std::sin(gamma)));
+        const double s = std::sin(gamma), c = std::cos(gamma);
+        const double want[12] = {s * m.A0, 0,          0, -c * m.A0, 0, 0,
+                                 0,        -c * m.Axx, 0, 0,         0, s * m.Ayy};
+        for (std::size_t k = 0; k < 12; ++k)
+          EXPECT_NEAR(v[k], want[k], kTolerance * m.A0) << "gamma " << gamma << " |c| " << r;
+      }
+  }
+}
+
+TEST(SpotIntegralTable, TheBuildGivesTheSameBitsOnOneOrTwoThreadsOrAFitsPool) {
+  const ContactSpot spot = ContactSpot::rect(0.7);
+  const PressureLaw<double> law = PressureLaw<double>::parabolic();
+  const SpotIntegralTable one(spot, law, 0.7, {}, 1), two(spot, law, 0.7, {}, 2);
+  std::atomic<int> calls{0};
+  const SpotParallelFor pool = [&calls](std::size_t count,
+                                        const std::function<void(std::size_t)>& work) {
+    ++calls;
+    spot_threads(2)(count, work);
+  };
+  const SpotIntegralTable pooled(spot, law, 0.7, {}, pool);
+  EXPECT_GT(calls.load(), 0);
+  EXPECT_EQ(one.stats().points, two.stats().points);
+  for (const auto& c : sample_centres(SpotKind::Rect, 0.7, 200, 3)) {
+    const auto a = channels(one(c[0], c[1])), b = channels(two(c[0], c[1])),
+               p = channels(pooled(c[0], c[1]));
+    for (std::size_t k = 0; k < 12; ++k) {
+      EXPECT_EQ(a[k], b[k]);
+      EXPECT_EQ(a[k], p[k]);
+    }
+  }
+}
+
+TEST(SpotIntegralTable, AStopRequestEndsTheBuild) {
+  std::atomic<int> asked{0};
+  const auto stop = [&asked] { return ++asked > 100; };
+  EXPECT_THROW(
+      SpotIntegralTable(ContactSpot::ellipse(0.5), PressureLaw<double>::hertz(), 0.5, stop, 2),
+      SpotTableBuildStopped);
+  EXPECT_LT(asked.load(), 1000);
+}
+
+TEST(SpotIntegralTable, ItServesOnlyItsSpotAspectAndLaw) {
+  const SpotIntegralTable table(ContactSpot::ellipse(0.8), PressureLaw<double>::annulus(0.5), 0.8);
+  EXPECT_TRUE(table.matches(ContactSpot::ellipse(0.8), 0.8, PressureLaw<double>::annulus(0.5)));
+  EXPECT_FALSE(
+      table.matches(ContactSpot::ellipse(0.8), 0.8000001, PressureLaw<double>::annulus(0.5)));
+  EXPECT_FALSE(table.matches(ContactSpot::ellipse(0.8), 0.8, PressureLaw<double>::annulus(0.6)));
+  EXPECT_FALSE(table.matches(ContactSpot::rect(0.8), 0.8, PressureLaw<double>::annulus(0.5)));
+  EXPECT_FALSE(table.matches(ContactSpot::ellipse(0.8), 0.8, PressureLaw<double>::uniform()));
+  const SpotIntegralTable circle(ContactSpot::circle(), PressureLaw<double>::hertz(), 1.0);
+  EXPECT_TRUE(circle.matches(ContactSpot::circle(), 0.3, PressureLaw<double>::hertz()));
+  EXPECT_TRUE(circle.matches(ContactSpot::ellipse(1.0), 1.0, PressureLaw<double>::hertz()));
+}
+
+TEST(SpotIntegralTable, AMapHasNoTable) {
+  auto map = std::make_shared<PressureMap>();
+  map->x = {-1.0, 1.0};
+  map->y = {-1.0, 1.0};
+  map->sigma0 = {1.0, 1.0, 1.0, 1.0};
+  EXPECT_THROW(
+      SpotIntegralTable(ContactSpot::pressure_map(map), PressureLaw<double>::uniform(), 1.0),
+      std::invalid_argument);
+}
+
+TEST(RectStripIntegrator, MatchesTheRayIntegrationNearAndFar) {
+  // The closed-form y-integral against the rays at their fine angular rule, including points
+  // within 1e-8 of the edges and corners, to 2e-12 of A0.
+  for (double q : {0.4, 2.5})
+    for (const auto& l : laws()) {
+      const ContactSpot spot = ContactSpot::rect(q);
+      const RectStripIntegrator strips(l.law, q);
+      const Reference reference(spot, l.law, q);
+      const double A0 = area(spot, l.law, q);
+      for (const auto& c : sample_centres(SpotKind::Rect, q, 60, 17)) {
+        const auto got = channels(strips(c[0], c[1])), want = channels(reference(c[0], c[1]));
+        for (std::size_t k = 0; k < 12; ++k)
+          ASSERT_NEAR(got[k], want[k], 2e-12 * A0)
+              << l.name << " q " << q << " channel " << k << " at (" << c[0] << ", " << c[1] << ")";
+      }
+    }
+}
+
+}  // namespace
+}  // namespace frictionid::model
