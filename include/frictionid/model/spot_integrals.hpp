@@ -488,7 +488,11 @@ class SpotIntegrator {
         out.y_ex[k] += W * wt[k] * y * ex;
       }
     };
-    const auto& rule = *rules_.angular;
+    // On an elongated spot the rim's direction turns on the reference-angle scale
+    // atanh(min(q, 1/q)), which the area rules' step 1/8 resolves only to ~1e-8: the rim is one
+    // dimensional, so a step of 1/64 costs little.
+    static const std::vector<QuadratureNode> rim_rule = make_tanh_sinh_rule(1.0 / 64.0, 1e-18);
+    const auto& rule = rules_.angular == &radial_rule() ? rim_rule : *rules_.angular;
     if (kind_ == SpotKind::Rect) {
       const double CY = std::clamp(cy / q_, -1.0, 1.0);
       for (double side : {-1.0, 1.0})
