@@ -8,20 +8,11 @@
 #include <frictionid/io/pressure_law_reader.hpp>
 #include <frictionid/io/pressure_map_reader.hpp>
 #include "app/option_parsers.hpp"
+#include "io/text.hpp"
 
 namespace frictionid::app {
 
 namespace {
-
-// The shortest text that reads back as x, for messages.
-std::string shortest(double x) {
-  char buf[32];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-    if (std::strtod(buf, nullptr) == x) break;
-  }
-  return buf;
-}
 
 std::string parameter_list() {
   std::string list;
@@ -56,9 +47,10 @@ void check_tilt(const std::string& option, const model::ContactSpot& contact,
   const model::TiltViolation v = model::tilt_violation(contact, q, h, h_y);
   if (!v.negative) return;
   throw InputError(option, 0, 0,
-                   "h = " + shortest(h) + ", h_y = " + shortest(h_y) +
-                       " make the pressure 1 + h x + h_y y negative at (x, y) = (" + shortest(v.x) +
-                       ", " + shortest(v.y) + ") of the contact spot " + contact_label +
+                   "h = " + text::shortest_number(h) + ", h_y = " + text::shortest_number(h_y) +
+                       " make the pressure 1 + h x + h_y y negative at (x, y) = (" +
+                       text::shortest_number(v.x) + ", " + text::shortest_number(v.y) +
+                       ") of the contact spot " + contact_label +
                        "; expected a tilt that keeps it >= 0 on the whole spot");
 }
 

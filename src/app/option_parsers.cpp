@@ -28,12 +28,7 @@ bool is_name_char(char c) {
 // A value for a message: the fewest digits that read back as the same double (2, 0.1, 1e-07);
 // nan and inf as such.
 std::string number_text(double x) {
-  char buf[32];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-    if (std::strtod(buf, nullptr) == x) break;
-  }
-  return buf;
+  return text::shortest_number(x);
 }
 
 // The whole text, quoted, with control characters escaped.

@@ -21,18 +21,8 @@ namespace {
 
 using text::shown;
 
-// The shortest text that reads back as x: "0.6", not 0.59999999999999998.
-std::string shortest(double x) {
-  char buf[32];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-    if (std::strtod(buf, nullptr) == x) break;
-  }
-  return buf;
-}
-
 std::string point_text(double x, double y) {
-  return "(x, y) = (" + shortest(x) + ", " + shortest(y) + ")";
+  return "(x, y) = (" + text::shortest_number(x) + ", " + text::shortest_number(y) + ")";
 }
 
 // The fields of a line split at commas, each trimmed of spaces and tabs.
@@ -118,7 +108,8 @@ std::shared_ptr<const model::PressureMap> load_pressure_map(const std::string& p
     }
     if (value[2] < 0.0)
       throw InputError(path, lineno, field_of[2] + 1,
-                       "sigma0 is " + shortest(value[2]) + " at " + point_text(value[0], value[1]) +
+                       "sigma0 is " + text::shortest_number(value[2]) + " at " +
+                           point_text(value[0], value[1]) +
                            "; expected a pressure >= 0 (no tension in the contact)");
     if (samples.size() == kMaxPressureMapSamples)
       throw InputError(path, lineno, 0,
@@ -148,7 +139,7 @@ std::shared_ptr<const model::PressureMap> load_pressure_map(const std::string& p
     const bool in_x = xs.size() < 2;
     throw InputError(path, samples.back().line, field_of[in_x ? 0 : 1] + 1,
                      std::string("only one distinct ") + (in_x ? "x" : "y") + " value (" +
-                         shortest(in_x ? xs.front() : ys.front()) +
+                         text::shortest_number(in_x ? xs.front() : ys.front()) +
                          "); expected a grid of at least 2 x 2 samples (found " +
                          std::to_string(xs.size()) + " x " + std::to_string(ys.size()) + ")");
   }
@@ -176,12 +167,13 @@ std::shared_ptr<const model::PressureMap> load_pressure_map(const std::string& p
       // Name the missing point at a line of its grid row (same y), where it would belong.
       std::size_t near = 0;
       for (std::size_t k = 0; k < xs.size() && near == 0; ++k) near = line_of[j * xs.size() + k];
-      throw InputError(
-          path, near, field_of[0] + 1,
-          "the grid has no point " + point_text(xs[i], ys[j]) + ": the row y = " + shortest(ys[j]) +
-              " (on this line) lacks x = " + shortest(xs[i]) +
-              "; expected every x value with every y value (" + std::to_string(xs.size()) + " x " +
-              std::to_string(ys.size()) + " points, found " + std::to_string(samples.size()) + ")");
+      throw InputError(path, near, field_of[0] + 1,
+                       "the grid has no point " + point_text(xs[i], ys[j]) +
+                           ": the row y = " + text::shortest_number(ys[j]) +
+                           " (on this line) lacks x = " + text::shortest_number(xs[i]) +
+                           "; expected every x value with every y value (" +
+                           std::to_string(xs.size()) + " x " + std::to_string(ys.size()) +
+                           " points, found " + std::to_string(samples.size()) + ")");
     }
   const model::SpotMoments<double> m = model::map_moments(*map);
   if (!(m.A0 > 0.0) || !std::isfinite(m.A0)) {
@@ -207,9 +199,9 @@ std::string contact_spot_label(const model::ContactSpot& spot) {
     case model::SpotKind::Circle:
       return "circle";
     case model::SpotKind::Ellipse:
-      return "ellipse:" + shortest(spot.q);
+      return "ellipse:" + text::shortest_number(spot.q);
     case model::SpotKind::Rect:
-      return "rect:" + shortest(spot.q);
+      return "rect:" + text::shortest_number(spot.q);
     case model::SpotKind::Map:
       return "map:" + (spot.map ? spot.map->source : std::string());
   }

@@ -5,6 +5,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <system_error>
 #include <vector>
 
@@ -36,6 +38,15 @@ std::size_t escaped_size(unsigned char u) {
 }
 
 }  // namespace
+
+std::string shortest_number(double x) {
+  char buf[40];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+    if (std::strtod(buf, nullptr) == x) break;
+  }
+  return buf;
+}
 
 std::string shown(std::string_view text, std::size_t max_bytes) {
   max_bytes = std::min(max_bytes, kMaxQuotedBytes);

@@ -31,6 +31,10 @@ inline constexpr std::size_t kMaxMessageBytes = 1024;
 // readable line that shows what is there.
 std::string shown(std::string_view text, std::size_t max_bytes = 60);
 
+// The fewest significant digits that read back as x: "0.6", not 0.59999999999999998; nan and
+// inf as printf spells them. For messages and labels.
+std::string shortest_number(double x);
+
 // s with every byte that is not printable ASCII or tab shown as \xNN: control characters (ESC,
 // BEL, CR, LF, NUL), DEL, and every byte of a non-ASCII character, which covers bidirectional
 // controls such as U+202E and bytes that are not UTF-8. Such bytes in a path or label would

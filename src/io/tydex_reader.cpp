@@ -83,15 +83,6 @@ std::string upper(std::string_view s) {
   return out;
 }
 
-std::string shortest(double x) {
-  char buf[40];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-    if (std::strtod(buf, nullptr) == x) break;
-  }
-  return buf;
-}
-
 class TydexReader {
  public:
   TydexReader(const std::string& path, const DatasetReadOptions& options)
@@ -283,7 +274,8 @@ void TydexReader::append_row(std::string_view line, std::size_t line_no) {
   std::size_t e = 0;
   for (int k : extra_channels_) {
     const bool as_written = channels_[k].number == 1.0 || tokens[k] == "NOTAVAIL";
-    data_.extra_values[e++].emplace_back(as_written ? std::string(tokens[k]) : shortest(raw[k]));
+    data_.extra_values[e++].emplace_back(as_written ? std::string(tokens[k])
+                                                    : text::shortest_number(raw[k]));
   }
   for (const auto& value : extra_constants_) data_.extra_values[e++].push_back(value);
 }
