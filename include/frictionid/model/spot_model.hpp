@@ -152,7 +152,7 @@ class SpotModel {
       return r;
     }
     if (k.omega == 0.0) {
-      // Pure sliding: the slip direction is v/|v| everywhere (docs/physics.md §9.5).
+      // Pure sliding: the slip direction is v/|v| everywhere (docs/physics.md (9.7)).
       const double v = std::hypot(k.v_x, k.v_y), ux = k.v_x / v, uy = k.v_y / v;
       r.T_x = p_.f * k.N * ux;
       r.T_y = p_.f * p_.kappa * k.N * uy;
