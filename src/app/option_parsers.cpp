@@ -285,19 +285,22 @@ ColumnMap checked_column_map(const std::vector<std::pair<std::string, std::strin
                            quoted(spec));
     map.canonical_to_header.emplace(canonical, header);
   }
-  // A header name may not stand for two canonical columns (v_x=omega leaves omega unmapped).
-  std::vector<std::string> effective;
-  for (const auto& name : canonical_names) {
-    const auto it = map.canonical_to_header.find(name);
-    effective.push_back(it == map.canonical_to_header.end() ? name : it->second);
+  // A header name may not stand for two canonical columns of one form (v_x=omega leaves omega
+  // unmapped). A file is read in one form, so a native name may share a header with a wheel-form
+  // name: T_x=Fx maps a native file's Fx column, and the wheel form's Fx is not read then.
+  for (const std::vector<std::string>& names : {dataset_column_names(), wheel_column_names()}) {
+    std::vector<std::string> effective;
+    for (const auto& name : names) {
+      const auto it = map.canonical_to_header.find(name);
+      effective.push_back(it == map.canonical_to_header.end() ? name : it->second);
+    }
+    for (std::size_t a = 0; a < effective.size(); ++a)
+      for (std::size_t b = a + 1; b < effective.size(); ++b)
+        if (effective[a] == effective[b])
+          throw InputError(option, 0, 0,
+                           "header name '" + effective[a] + "' would supply both " + names[a] +
+                               " and " + names[b] + "; map the other one to a different name");
   }
-  for (std::size_t a = 0; a < effective.size(); ++a)
-    for (std::size_t b = a + 1; b < effective.size(); ++b)
-      if (effective[a] == effective[b])
-        throw InputError(option, 0, 0,
-                         "header name '" + effective[a] + "' would supply both " +
-                             canonical_names[a] + " and " + canonical_names[b] +
-                             "; map the other one to a different name");
   return map;
 }
 

@@ -376,3 +376,19 @@ TEST(ParseContactList, ReadsCompareSpotsInOrderAndRejectsRepeats) {
 
 }  // namespace
 }  // namespace frictionid
+
+namespace frictionid {
+namespace {
+
+// A file is read in one form: a native column may be mapped to a header that is also a
+// wheel-form name (a native file whose T_x column is called Fx), while two columns of one form
+// still cannot share a header.
+TEST(ParseColumnMap, ANativeColumnMayTakeAHeaderThatIsAWheelFormName) {
+  const ColumnMap m = parse_column_map("v_x=speed,omega=spin,T_x=Fx");
+  EXPECT_EQ(m.canonical_to_header.at("T_x"), "Fx");
+  EXPECT_THROW(parse_column_map("v_x=omega"), InputError);
+  EXPECT_THROW(parse_column_map("V=alpha"), InputError);
+}
+
+}  // namespace
+}  // namespace frictionid
