@@ -2,9 +2,9 @@
 
 #include <exception>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
-#include <stdexcept>
 
 #include <frictionid/fitter.hpp>
 #include <frictionid/io/dataset_csv.hpp>

@@ -27,8 +27,8 @@ inline constexpr unsigned long long kMaxFitSeed = 4'294'967'295ULL;
 FitSettings fit_settings(const FitRequest& r, const std::string& model, bool lenient = false);
 
 // The settings for fitting `data`: fit_settings, and h_y fitted on the circle too when the data
-// measure M_tilt and the fit takes that channel (unless --fix holds it). What a fit runs with; fit_settings alone checks a
-// request before its data are read.
+// measure M_tilt and the fit takes that channel (unless --fix holds it). What a fit runs with;
+// fit_settings alone checks a request before its data are read.
 FitSettings fit_settings(const FitRequest& r, const std::string& model, const Dataset& data,
                          bool lenient = false);
 
