@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <frictionid/io/input_error.hpp>
+#include "io/small_file.hpp"
 #include "io/text.hpp"
 
 namespace frictionid {
@@ -41,18 +42,8 @@ bool moments_finite_and_positive(const model::PressureLaw<double>& law) {
 }  // namespace
 
 model::PressureLaw<double> load_pressure_table(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(path, 0, 0, "is a directory; expected a pressure table file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, 0, "cannot open the pressure table file");
-  // A bounded read: a table is a few hundred samples, and /dev/zero must not be read forever.
-  constexpr std::size_t kMaxTableBytes = std::size_t{16} << 20;
-  std::string content(kMaxTableBytes + 1, '\0');
-  in.read(content.data(), static_cast<std::streamsize>(content.size()));
-  content.resize(static_cast<std::size_t>(in.gcount()));
-  if (content.size() > kMaxTableBytes)
-    throw InputError(path, 0, 0, "is larger than 16 MiB; expected a pressure table (rho,sigma)");
+  const std::string content = io::read_small_file(
+      path, "a pressure table file", "pressure table file", "a pressure table (rho,sigma)");
   std::istringstream table(content);
   std::vector<double> rho, sigma;
   std::vector<std::size_t> lines;

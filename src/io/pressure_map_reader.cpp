@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <frictionid/io/input_error.hpp>
+#include "io/small_file.hpp"
 #include "io/text.hpp"
 
 namespace frictionid {
@@ -43,27 +44,11 @@ struct Sample {
   std::size_t line;
 };
 
-// Reads at most 16 MiB of the file: a map is a few thousand samples, and /dev/zero must not be
-// read forever.
-std::string read_bounded(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(path, 0, 0, "is a directory; expected a pressure map file (x,y,sigma0)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, 0, "cannot open the pressure map file");
-  constexpr std::size_t kMaxMapBytes = std::size_t{16} << 20;
-  std::string content(kMaxMapBytes + 1, '\0');
-  in.read(content.data(), static_cast<std::streamsize>(content.size()));
-  content.resize(static_cast<std::size_t>(in.gcount()));
-  if (content.size() > kMaxMapBytes)
-    throw InputError(path, 0, 0, "is larger than 16 MiB; expected a pressure map (x,y,sigma0)");
-  return content;
-}
-
 }  // namespace
 
 std::shared_ptr<const model::PressureMap> load_pressure_map(const std::string& path) {
-  std::istringstream file(read_bounded(path));
+  std::istringstream file(io::read_small_file(path, "a pressure map file (x,y,sigma0)",
+                                              "pressure map file", "a pressure map (x,y,sigma0)"));
   static const std::array<const char*, 3> kNames = {"x", "y", "sigma0"};
   std::array<std::size_t, 3> field_of{};  // the field (0-based) of x, y, sigma0
   std::size_t header_line = 0, field_count = 0;
