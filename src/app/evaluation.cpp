@@ -42,7 +42,7 @@ std::size_t evaluate_file(const EvalRequest& r) {
   const ModelEvaluator<double> eval(
       s.kind, s.law, s.params.data(),
       ring_table_for_rows(s.kind, s.law, s.params[kN], false, d.rows(), s.contact), nullptr,
-      s.contact);
+      spot_for_rows(s.kind, s.law, s.params[kQ], s.params[kN], d.rows(), s.contact));
   const bool tilt = shows_tilt(s);
   std::string text = dataset_csv_text(d);
   const std::size_t header_end = text.find('\n');
@@ -91,7 +91,7 @@ ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& 
   const ModelEvaluator<double> eval(
       s.kind, s.law, s.params.data(),
       ring_table_for_rows(s.kind, s.law, s.params[kN], false, k.rows, s.contact), nullptr,
-      s.contact);
+      spot_for_rows(s.kind, s.law, s.params[kQ], s.params[kN], k.rows, s.contact));
   for (std::size_t i = 0; i < k.rows; ++i) {
     const auto p = eval(model::Kinematics{k.v_x[i], k.v_y[i], k.omega[i], k.N[i], k.R[i]});
     out.T_x[i] = p.T_x;

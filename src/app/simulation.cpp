@@ -99,14 +99,14 @@ SimulationOutcome simulate(const SimulateRequest& r) {
   settings.max_steps = r.max_steps;
   settings.record = r.trajectory || !r.output.empty();
 
-  // A tabulated law is integrated piece by piece between its samples: thousands of steps of the
-  // integrator pay for its ring-integral table at once.
+  // A tabulated law is integrated piece by piece between its samples, and an ellipse or a
+  // rectangle ray by ray: the integrator's thousands of evaluations pay for a table at once.
   const ModelEvaluator<double> eval(
       s.kind, s.law, s.params.data(),
       s.law.kind == model::PressureKind::Table
           ? ring_table_for(s.kind, s.law, s.params[kN], false, {}, s.contact)
           : nullptr,
-      nullptr, s.contact);
+      nullptr, spot_with_table(s.kind, s.law, s.params[kQ], s.params[kN], s.contact));
   const auto friction = [&eval](const model::Kinematics& k) { return eval(k); };
   const auto start = std::chrono::steady_clock::now();
   SimulationOutcome out;

@@ -40,8 +40,18 @@ void throw_if_cancelled(const FitObserver* observer) {
 std::vector<ParamVector> global_starts(const LocalProblem& ps, const ParamVector& initial,
                                        FitResult& res, FitObserver* observer) {
   const FitSettings& s = *ps.settings;
+  // A free aspect q stays at its start here: every other parameter enters through sums of the
+  // spot integrals, which the fit's cache holds for that q (spot_cache.hpp), while a new q
+  // integrates every row again (~100 us each). The local fits then free q.
+  std::vector<int> free;
+  for (int i : ps.free)
+    if (i != kQ) free.push_back(i);
+  if (free.empty()) {
+    res.global.algorithm = "none (initial values)";
+    return {};
+  }
   GlobalSearchProblem gp;
-  for (int i : ps.free) {
+  for (int i : free) {
     gp.lower.push_back(to_search(s.params[i], s.params[i].lower));
     gp.upper.push_back(to_search(s.params[i], s.params[i].upper));
   }
@@ -59,7 +69,7 @@ std::vector<ParamVector> global_starts(const LocalProblem& ps, const ParamVector
       p.total = s.global_evaluations;
       observer->on_progress(p);
     }
-    return 2.0 * cost(from_search_point(s, ps.free, initial, z));  // sum of squares
+    return 2.0 * cost(from_search_point(s, free, initial, z));  // sum of squares
   };
   const std::function<bool()> stop = [observer] { return observer && observer->cancelled(); };
   const GlobalSearchOutcome g = global_search(gp, s.global_algorithm, s.global_evaluations, s.seed,
@@ -71,7 +81,7 @@ std::vector<ParamVector> global_starts(const LocalProblem& ps, const ParamVector
                            " evaluations (" + g.failure + "); the local fits started from " +
                            (g.starts.empty() ? "the initial values" : "its best points so far"));
   std::vector<ParamVector> starts;
-  for (const auto& z : g.starts) starts.push_back(from_search_point(s, ps.free, initial, z.data()));
+  for (const auto& z : g.starts) starts.push_back(from_search_point(s, free, initial, z.data()));
   return starts;
 }
 

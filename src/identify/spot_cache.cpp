@@ -6,7 +6,9 @@
 #include <vector>
 
 #include <frictionid/fit_error.hpp>
-#include <frictionid/model/spot_integrals.hpp>
+#include <frictionid/model/spot_integral_table.hpp>
+#include <frictionid/model/spot_point_integrator.hpp>
+#include <frictionid/model_variant.hpp>
 
 #include "identify/row_chunks.hpp"
 
@@ -16,15 +18,29 @@ std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(
     const Dataset& data, const FitSettings& s, int threads, const std::function<bool()>& stop) {
   if (s.model != ModelKind::Exact || s.contact.kind == model::SpotKind::Circle) return nullptr;
   const bool power = s.law.kind == model::PressureKind::Power;
-  if (!s.params[kQ].fixed && s.contact.has_aspect()) return nullptr;
   if (power && !s.params[kN].fixed) return nullptr;
   const double q = s.contact.has_aspect() ? s.params[kQ].initial : 1.0;
   const double n = power ? s.params[kN].initial : s.law.n;
   model::PressureLaw<double> law = s.law;
   if (power) law.n = n;
-  const model::SpotIntegrator integrate(s.contact, law, q);
-
   const std::size_t rows = data.rows();
+  // Many rows of an ellipse or a rectangle: tabulate the plane of the centre of rotation once
+  // (0.05-0.4 s of CPU time) and read every row from it (~0.3 us) instead of integrating each
+  // (30-300 us). The table stays within 3e-11 of the load of the integrals.
+  std::unique_ptr<const model::SpotIntegralTable> table;
+  if (rows >= kSpotTableMinRows && s.contact.has_aspect()) {
+    try {
+      table = std::make_unique<const model::SpotIntegralTable>(
+          s.contact, law, q, stop,
+          [threads](std::size_t count, const std::function<void(std::size_t)>& work) {
+            for_each_chunk(count, threads, work);
+          });
+    } catch (const model::SpotTableBuildStopped&) {
+      throw FitError("interrupted");
+    }
+  }
+  const model::SpotPointIntegrator integrate(s.contact, law, q);
+
   std::vector<model::SpotIntegrals> values(rows);
   std::vector<std::uint8_t> spinning(rows, 0);
   std::atomic<bool> stopped{false};
@@ -39,7 +55,7 @@ std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(
       const auto [cx, cy] =
           model::rotation_centre(data.v_x[i], data.v_y[i], data.omega[i], data.R[i]);
       if (!std::isfinite(cx) || !std::isfinite(cy)) continue;
-      values[i] = integrate(cx, cy);
+      values[i] = table ? (*table)(cx, cy) : integrate(cx, cy);
       spinning[i] = 1;
     }
   });

@@ -13,9 +13,10 @@
 namespace frictionid {
 
 // The integrals of every spinning row at the settings' q and exponent n (their initial values),
-// or nullptr when nothing can be cached: the circle, another model, or q or n free (their
-// integrals change at every step). Spread over `threads`; `stop` is asked between chunks and a
-// true answer ends the build with FitError("interrupted").
+// or nullptr when nothing can be cached: the circle, another model, or n free (its integrals
+// change at every step). With q free they serve the global stage, which holds q at its start
+// (fit_search.cpp); the local stage's models, whose q moves, integrate. Spread over `threads`;
+// `stop` is asked between chunks and a true answer ends the build with FitError("interrupted").
 std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(
     const Dataset& data, const FitSettings& s, int threads, const std::function<bool()>& stop);
 

@@ -49,7 +49,8 @@ Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
     throw std::invalid_argument("the design needs at least one load and one slip angle");
   const ModelEvaluator<double> model(
       kind, law, params.data(),
-      ring_table_for_rows(kind, law, params[kN], false, design.rows, contact), nullptr, contact);
+      ring_table_for_rows(kind, law, params[kN], false, design.rows, contact), nullptr,
+      spot_for_rows(kind, law, params[kQ], params[kN], design.rows, contact));
   const int channels =
       contact.kind != model::SpotKind::Circle || params[kHy] != 0.0 ? kChannelCount : 4;
   NormalStream normal(seed);

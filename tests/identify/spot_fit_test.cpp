@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <frictionid/synthetic_data.hpp>
@@ -73,7 +74,7 @@ TEST(SpotFit, NoiseFreeRectangleDataWithAFreeAspectRecoversTheAspectToEightDigit
   expect_digits(r, expected, 8.0);
 }
 
-TEST(SpotFit, TheRowCacheHoldsEverySpinningRowAndNothingWhenTheAspectIsFree) {
+TEST(SpotFit, TheRowCacheHoldsEverySpinningRowAtTheStartingAspectAndNothingWhenTheExponentIsFree) {
   const auto spot = model::ContactSpot::ellipse(0.5);
   const Dataset d =
       generate_dataset(ModelKind::Exact, Law::uniform(), truth_on(Law::uniform(), spot),
@@ -87,8 +88,42 @@ TEST(SpotFit, TheRowCacheHoldsEverySpinningRowAndNothingWhenTheAspectIsFree) {
   const auto [cx, cy] = model::rotation_centre(d.v_x[7], d.v_y[7], d.omega[7], d.R[7]);
   ASSERT_NE(cache->find(cx, cy), nullptr);
   EXPECT_EQ(cache->find(cx, cy)->ex[0], integrate(cx, cy).ex[0]);
+  // A free aspect: the cache serves the global stage, which holds q at its start.
   s.params[kQ].fixed = false;
-  EXPECT_FALSE(spot_cache_for_rows(d, s, 2, {}));
+  const auto at_start = spot_cache_for_rows(d, s, 2, {});
+  ASSERT_TRUE(at_start);
+  EXPECT_EQ(at_start->q(), 0.5);
+  // A free exponent changes every row's integrals at every step.
+  FitSettings power = FitSettings::defaults(ModelKind::Exact, Law::power(1.5), "power", spot);
+  power.params[kN].fixed = false;
+  EXPECT_FALSE(spot_cache_for_rows(d, power, 2, {}));
+}
+
+// From kSpotTableMinRows rows the cache reads a table of the plane instead of integrating every
+// row: the same integrals within 3e-11 of the load A0.
+TEST(SpotFit, ManyRowsAreCachedFromATableWithin3e11OfTheLoad) {
+  const auto spot = model::ContactSpot::rect(0.7);
+  SyntheticDesign design = small_design();
+  design.rows = kSpotTableMinRows;
+  const Dataset d = generate_dataset(ModelKind::Exact, Law::hertz(), truth_on(Law::hertz(), spot),
+                                     design, NoiseSpec{}, 6, spot);
+  const FitSettings s = FitSettings::defaults(ModelKind::Exact, Law::hertz(), "hertz", spot);
+  const auto cache = spot_cache_for_rows(d, s, 2, {});
+  ASSERT_TRUE(cache);
+  EXPECT_EQ(cache->size(), d.rows());
+  const double A0 = model::spot_moments(spot, model::law_moments(Law::hertz()), 0.7).A0;
+  const model::SpotIntegrator integrate(spot, Law::hertz(), 0.7);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < d.rows(); i += 97) {
+    const auto [cx, cy] = model::rotation_centre(d.v_x[i], d.v_y[i], d.omega[i], d.R[i]);
+    const model::SpotIntegrals a = *cache->find(cx, cy), b = integrate(cx, cy);
+    for (int w = 0; w < 3; ++w)
+      for (double e :
+           {a.ex[w] - b.ex[w], a.ey[w] - b.ey[w], a.x_ey[w] - b.x_ey[w], a.y_ex[w] - b.y_ex[w]})
+        worst = std::max(worst, std::fabs(e) / A0);
+  }
+  EXPECT_LT(worst, 3e-11);
+  EXPECT_GT(worst, 0.0);  // it is a table, not the integrator
 }
 
 TEST(SpotFit, ApproximantsRefuseANonCircularSpot) {

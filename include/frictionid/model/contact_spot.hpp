@@ -51,6 +51,7 @@ struct PressureMap {
 };
 
 class SpotIntegralCache;  // spot_integral_cache.hpp
+class SpotIntegralTable;  // spot_integral_table.hpp
 
 struct ContactSpot {
   SpotKind kind = SpotKind::Circle;
@@ -61,12 +62,15 @@ struct ContactSpot {
   // The integrals of a fit's rows, computed once (spot_integral_cache.hpp); a model uses them
   // when its q and exponent are the ones they were computed for.
   std::shared_ptr<const SpotIntegralCache> cache;
+  // The integrals over the whole plane of the centre of rotation (spot_integral_table.hpp), for
+  // many rows: a model uses it when its q and law are the table's.
+  std::shared_ptr<const SpotIntegralTable> table;
 
   static ContactSpot circle() { return {}; }
-  static ContactSpot ellipse(double q) { return {SpotKind::Ellipse, q, nullptr, nullptr}; }
-  static ContactSpot rect(double q) { return {SpotKind::Rect, q, nullptr, nullptr}; }
+  static ContactSpot ellipse(double q) { return {SpotKind::Ellipse, q, nullptr, nullptr, nullptr}; }
+  static ContactSpot rect(double q) { return {SpotKind::Rect, q, nullptr, nullptr, nullptr}; }
   static ContactSpot pressure_map(std::shared_ptr<const PressureMap> m) {
-    return {SpotKind::Map, 1.0, std::move(m), nullptr};
+    return {SpotKind::Map, 1.0, std::move(m), nullptr, nullptr};
   }
   // Whether the aspect q is a property of the spot that a fit can identify.
   bool has_aspect() const { return kind == SpotKind::Ellipse || kind == SpotKind::Rect; }

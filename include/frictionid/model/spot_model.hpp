@@ -19,7 +19,9 @@
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/model/scalar_ops.hpp>
 #include <frictionid/model/spot_integral_cache.hpp>
+#include <frictionid/model/spot_integral_table.hpp>
 #include <frictionid/model/spot_integrals.hpp>
+#include <frictionid/model/spot_point_integrator.hpp>
 
 namespace frictionid::model {
 
@@ -88,11 +90,11 @@ class SpotModel {
       return;
     }
     const PressureLaw<double> law_d = value_law(law_);
-    integrator_ = std::make_unique<SpotIntegrator>(spot_, law_d, value_of(q_), rules_);
+    integrator_ = std::make_unique<SpotPointIntegrator>(spot_, law_d, value_of(q_), rules_);
     if (detail::has_derivative(q_) && spot_.has_aspect()) {
       const double q0 = value_of(q_), dq = 1e-5 * q0;
-      q_minus_ = std::make_unique<SpotIntegrator>(spot_, law_d, q0 - dq, rules_);
-      q_plus_ = std::make_unique<SpotIntegrator>(spot_, law_d, q0 + dq, rules_);
+      q_minus_ = std::make_unique<SpotPointIntegrator>(spot_, law_d, q0 - dq, rules_);
+      q_plus_ = std::make_unique<SpotPointIntegrator>(spot_, law_d, q0 + dq, rules_);
       q_step_ = dq;
     }
     if (law_.kind == PressureKind::Power && detail::has_derivative(law_.n) &&
@@ -101,8 +103,8 @@ class SpotModel {
       PressureLaw<double> lo = law_d, hi = law_d;
       lo.n = n0 >= dn ? n0 - dn : n0;
       hi.n = n0 + dn;
-      n_minus_ = std::make_unique<SpotIntegrator>(spot_, lo, value_of(q_), rules_);
-      n_plus_ = std::make_unique<SpotIntegrator>(spot_, hi, value_of(q_), rules_);
+      n_minus_ = std::make_unique<SpotPointIntegrator>(spot_, lo, value_of(q_), rules_);
+      n_plus_ = std::make_unique<SpotPointIntegrator>(spot_, hi, value_of(q_), rules_);
       n_step_ = hi.n - lo.n;
     }
     moments_ = spot_moments(spot_, law_moments(law_), q_);
@@ -110,6 +112,8 @@ class SpotModel {
     if (c && !q_plus_ && !n_plus_ && c->q() == value_of(q_) &&
         (law_.kind != PressureKind::Power || c->n() == value_of(law_.n)))
       cache_ = c.get();
+    const auto& t = spot_.table;
+    if (t && !q_plus_ && !n_plus_ && t->matches(spot_, value_of(q_), law_d)) table_ = t.get();
   }
 
   Resultants<T> operator()(const Kinematics& k) const {
@@ -121,7 +125,7 @@ class SpotModel {
   // The integrals for the centre of rotation at (cx, cy) (units of R), with q- and n-slopes.
   SpotIntegralsT<T> integrals(double cx, double cy) const {
     const SpotIntegrals* cached = cache_ ? cache_->find(cx, cy) : nullptr;
-    const SpotIntegrals v = cached ? *cached : (*integrator_)(cx, cy);
+    const SpotIntegrals v = cached ? *cached : table_ ? (*table_)(cx, cy) : (*integrator_)(cx, cy);
     SpotIntegrals dq, dn;
     if (q_plus_) dq = ((*q_plus_)(cx, cy) - (*q_minus_)(cx, cy)) * (1.0 / (2.0 * q_step_));
     if (n_plus_) dn = ((*n_plus_)(cx, cy) - (*n_minus_)(cx, cy)) * (1.0 / n_step_);
@@ -185,8 +189,9 @@ class SpotModel {
   T q_;
   SpotMoments<T> moments_{};
   std::unique_ptr<ExactModel<T>> circle_;
-  std::unique_ptr<SpotIntegrator> integrator_, q_minus_, q_plus_, n_minus_, n_plus_;
+  std::unique_ptr<SpotPointIntegrator> integrator_, q_minus_, q_plus_, n_minus_, n_plus_;
   const SpotIntegralCache* cache_ = nullptr;  // the fit's rows, when q and n are the cache's
+  const SpotIntegralTable* table_ = nullptr;  // the plane, when q and the law are the table's
   double q_step_ = 0.0, n_step_ = 0.0;
 };
 

@@ -1,0 +1,114 @@
+// The exact model on an ellipse or a rectangle reading its integrals from a table
+// (ContactSpot::table, model/spot_integral_table.hpp), and a rectangle's points by strips
+// (model/spot_point_integrator.hpp), against the brute-force 2-D oracle of spot_reference.hpp.
+#include <frictionid/model/contact_spot.hpp>
+#include <frictionid/model/spot_integral_table.hpp>
+#include <frictionid/model/spot_model.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "model/spot_cases.hpp"
+#include "model/spot_reference.hpp"
+
+namespace {
+
+namespace sr = frictionid::testing::spot_ref;
+namespace sc = frictionid::testing::spot_cases;
+namespace fm = frictionid::model;
+
+sr::Result production(const fm::ContactSpot& spot, const fm::PressureLaw<double>& law,
+                      const sr::Params& p, double q, const sr::Motion& m) {
+  const fm::Kinematics k{m.v_x, m.v_y, m.omega, m.N, m.R};
+  const fm::Resultants<double> r =
+      fm::spot_resultants<double>({p.f, p.kappa, p.h, p.h_y, q}, law, spot, k);
+  return {r.T_x, r.T_y, r.M_z, r.M_roll, r.M_tilt, r.N, 0.0};
+}
+
+fm::ContactSpot with_table(fm::ContactSpot spot, const fm::PressureLaw<double>& law, double q) {
+  spot.table = std::make_shared<const fm::SpotIntegralTable>(spot, law, q);
+  return spot;
+}
+
+// 14 random spots: an ellipse and a rectangle for every law of the sweep with a closed form
+// (steps included; a tabulated law's table takes seconds to build), Q log-uniform in [0.4,
+// 2.5], four motions each: kappa != 1, h and h_y != 0, eps from 0.05 to 6, pure spin and pure
+// sliding among them. The model reads the table, the oracle integrates.
+TEST(SpotModelTable, TabulatedEllipsesAndRectanglesMatchTheOracleTo1e9) {
+  sc::Uniform u(0x7ab1e5);
+  std::vector<sc::LawCase> laws = sc::law_cases();
+  laws.pop_back();  // the tabulated law
+  sc::Worst worst{"tabulated model vs oracle, friction / (f N), (f N R)"};
+  for (int i = 0; i < 2 * static_cast<int>(laws.size()); ++i) {
+    const sc::LawCase& lc = laws[static_cast<std::size_t>(i / 2)];
+    const double q = u.log_in(0.4, 2.5);
+    const bool rect = i % 2 == 1;
+    const sr::Spot ref = rect ? sc::rect(q, lc.ref) : sc::ellipse(q, lc.ref);
+    const fm::ContactSpot spot =
+        with_table(rect ? fm::ContactSpot::rect(q) : fm::ContactSpot::ellipse(q), lc.law, q);
+    for (int j = 0; j < 4; ++j) {
+      const sr::Params p = sc::random_params(u, q);
+      const sr::Motion m = sc::random_motion(u, 4 * i + j, 9);
+      SCOPED_TRACE("case " + std::to_string(i) + "." + std::to_string(j) + ": " +
+                   sc::describe(ref, lc.name, p, m));
+      const sr::Result want = sr::spot_reference(ref, p, m);
+      const sr::Result got = production(spot, lc.law, p, q, m);
+      const double e = sc::friction_error(got, want, p, m);
+      worst.add(e);
+      EXPECT_LT(e, 1e-9);
+      EXPECT_LT(sc::moment_error(got, want, m), 1e-12);
+    }
+  }
+}
+
+// A table for another aspect, or another law, is not used: the model integrates, bit for bit
+// as without a table.
+TEST(SpotModelTable, ATableOfAnotherAspectOrLawIsIgnored) {
+  const auto hertz = fm::PressureLaw<double>::hertz();
+  const fm::ContactSpot plain = fm::ContactSpot::ellipse(0.7);
+  fm::ContactSpot other_q = plain, other_law = plain;
+  other_q.table = std::make_shared<const fm::SpotIntegralTable>(plain, hertz, 0.8);
+  other_law.table = std::make_shared<const fm::SpotIntegralTable>(
+      plain, fm::PressureLaw<double>::parabolic(), 0.7);
+  const sr::Params p{0.8, 1.3, 0.1, -0.05};
+  const sr::Motion m{0.3, -0.2, 1.1, 50.0, 0.1};
+  const sr::Result a = production(plain, hertz, p, 0.7, m);
+  for (const fm::ContactSpot& s : {other_q, other_law}) {
+    const sr::Result b = production(s, hertz, p, 0.7, m);
+    EXPECT_EQ(a.T_x, b.T_x);
+    EXPECT_EQ(a.T_y, b.T_y);
+    EXPECT_EQ(a.M_z, b.M_z);
+  }
+}
+
+// The centre of rotation within 1e-4 of a rectangle's corner, where rays about it would need a
+// fine angular rule: strips with the y-integral in closed form stay exact there.
+TEST(SpotModelTable, RectanglesAreExactNextToTheirCorners) {
+  sc::Uniform u(0xc0ffee);
+  const std::vector<sc::LawCase> laws = sc::law_cases();
+  sc::Worst worst{"rectangle next to a corner vs oracle, friction / (f N), (f N R)"};
+  for (int i = 0; i < 24; ++i) {
+    const sc::LawCase& lc = laws[static_cast<std::size_t>(i) % laws.size()];
+    const double q = u.log_in(0.3, 3.0);
+    const sr::Spot ref = sc::rect(q, lc.ref);
+    const sr::Params p = sc::random_params(u, q);
+    // c = (-v_y, v_x)/(omega R) at (+-1, +-q) displaced by up to 1e-4.
+    sr::Motion m{0.0, 0.0, u.sign() * u.log_in(0.2, 5.0), u.in(1.0, 300.0), u.log_in(0.01, 2.0)};
+    const double cx = u.sign() * (1.0 + u.in(-1e-4, 1e-4));
+    const double cy = u.sign() * (q + u.in(-1e-4, 1e-4));
+    m.v_x = cy * m.omega * m.R;
+    m.v_y = -cx * m.omega * m.R;
+    SCOPED_TRACE("case " + std::to_string(i) + ": " + sc::describe(ref, lc.name, p, m));
+    const sr::Result want = sr::spot_reference(ref, p, m);
+    const sr::Result got = production(fm::ContactSpot::rect(q), lc.law, p, q, m);
+    const double e = sc::friction_error(got, want, p, m);
+    worst.add(e);
+    EXPECT_LT(e, 1e-11);
+  }
+}
+
+}  // namespace
