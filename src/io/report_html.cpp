@@ -59,15 +59,9 @@ void result_line(std::string& h, const FitResult& r) {
 
 // Warnings first: they decide whether the numbers below can be used.
 void warnings_section(std::string& h, const FitResult& r) {
-  if (r.warnings.empty()) {
-    line(h,
-         "<p class=\"ok\" id=\"warnings\">No warnings: the fit converged without a sign of "
-         "trouble the tool checks for.</p>");
-    return;
-  }
-  line(h, "<div class=\"warnings\" id=\"warnings\"><h2>Warnings</h2><ul>");
-  for (const auto& w : r.warnings) line(h, "<li>" + escape(w) + "</li>");
-  line(h, "</ul></div>");
+  h += html::warnings_section(
+      r.warnings, {},
+      "No warnings: the fit converged without a sign of trouble the tool checks for.");
 }
 
 // The plot headings in order of first appearance.
