@@ -43,8 +43,8 @@ std::string parameter_note(const ParameterEstimate& p, const char* at_bound,
 // The summary of channel c in r, or nullptr when c was not fitted.
 const ChannelSummary* find_summary(const FitResult& r, Channel c);
 
-// The plot files make_plots gives for r with default options: collapse_<c>.svg, fit_<c>.svg and
-// residuals_<c>.svg for every fitted channel.
+// The plot files make_plots gives for r with default options: collapse_<c>.svg, fit_<c>.svg,
+// residuals_<c>.svg, residuals_fitted_<c>.svg and qq_<c>.svg for every fitted channel.
 std::vector<std::string> default_plot_files(const FitResult& r);
 
 // Rows kept in plots: with more than kMaxPlotRows rows, about one in plot_step(rows), chosen by a
@@ -66,9 +66,10 @@ struct ReportPlot {
   std::string svg;      // an <svg> element (io/svg_plot.hpp), no namespace attribute
 };
 
-// Every plot of the report, in report order (per channel: collapse, fit, residuals; then the
-// --plot-x plots). Channels without predictions are left out. Throws std::invalid_argument when
-// a column named in `o` is not in the dataset or (for plot_x) not numeric.
+// Every plot of the report, in report order (per channel: collapse, fit, residuals against eps
+// and against the fitted value, normal quantiles; then the --plot-x plots). Channels without
+// predictions are left out. Throws std::invalid_argument when a column named in `o` is not in the
+// dataset or (for plot_x) not numeric.
 std::vector<ReportPlot> make_plots(const FitResult& r, const Dataset& d, const ReportOptions& o);
 
 // A plot as an HTML <figure>: the inline SVG and a caption linking its file (no final newline).
