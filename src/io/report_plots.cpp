@@ -302,7 +302,7 @@ void thin_dots(std::vector<svg::Series>& dots) {
   std::size_t total = 0;
   for (const auto& s : dots) total += s.x.size();
   if (total <= 1500) return;
-  for (auto& s : dots) s.dot_size = 2.6, s.opacity = total > 3000 ? 0.3 : 0.45;
+  for (auto& s : dots) s.dot_size = 2.6, s.opacity = total > 3000 ? 0.45 : 0.55;
 }
 
 // The rows of each colour group, in row order.
