@@ -6,9 +6,11 @@ back from the DOM.
   factorial_in_browser.py --exe build/frictionid
 
 The design: loads 1, 2 and 4 kN; slip angles 0, 45, 90 (lateral slip) and 135 degrees; both
-spin signs; 40 values of eps from 0.03 to 30. The exact model (Hertz) gives the resistances
-(`frictionid eval --input`); this script adds Gaussian noise of sd sqrt(a^2 + (0.02 y)^2) with
-a fixed seed, a per channel (an affine noise, which the default noise model can find).
+spin signs; 64 values of eps from 0.03 to 30 (1536 rows, 192 or more per colour group, so that
+a group's sample SD is within about +-0.05 of its true value). The exact model (Hertz) gives
+the resistances (`frictionid eval --input`); this script adds Gaussian noise of sd
+sqrt(a^2 + (0.02 y)^2) with a fixed seed, a per channel (an affine noise, which the default
+noise model can find).
 
 Checks:
   - report.html, every residual plot (residuals_<c>.svg): the whitened residuals, read back from
@@ -47,7 +49,7 @@ from report_in_browser import CHROMIUM_FLAGS, chromium, run  # noqa: E402
 LOADS = (1000.0, 2000.0, 4000.0)
 ANGLES = (0.0, 45.0, 90.0, 135.0)
 SPINS = (1.0, -1.0)
-EPS = [0.03 * 1000.0 ** (k / 39.0) for k in range(40)]
+EPS = [0.03 * 1000.0 ** (k / 63.0) for k in range(64)]
 R, OMEGA = 0.05, 2.0
 CHANNELS = ("T_x", "T_y", "M_z")
 
