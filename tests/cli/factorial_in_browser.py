@@ -66,8 +66,7 @@ def write_design(path):
                         t = math.radians(a)
                         # cos(90 deg) is 6e-17, not 0: lateral slip has v_x = 0 exactly.
                         vx = 0.0 if a == 90.0 else v * math.cos(t)
-                        w.writerow(["%.17g" % vx, "%.17g" % (v * math.sin(t)), "%.17g" % (s * OMEGA),
-                                    "%.17g" % n, "%.17g" % R])
+                        w.writerow(["%.17g" % x for x in (vx, v * math.sin(t), s * OMEGA, n, R)])
 
 
 def add_noise(model_csv, out_csv, seed=20261126):
