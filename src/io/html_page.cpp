@@ -1,5 +1,6 @@
 #include "io/html_page.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -131,6 +132,28 @@ std::string isolated(const std::string& text) {
   return has_directional(text) ? "<bdi>" + escaped + "</bdi>" : escaped;
 }
 
+std::string warnings_section(const std::vector<std::string>& warnings,
+                             const std::vector<std::string>& prefixes, const std::string& none) {
+  if (warnings.empty()) return "<p class=\"ok\" id=\"warnings\">" + svg::escape(none) + "</p>\n";
+  std::string h = fmt::format(
+      "<div class=\"warnings\" id=\"warnings\"><h2>Warnings</h2>\n<p>{} warning{}, by cause, "
+      "the most severe first; click a cause to unfold its warnings.</p>\n",
+      warnings.size(), warnings.size() == 1 ? "" : "s");
+  for (const auto& g : group_warnings(warnings)) {
+    h += fmt::format(
+        "<details class=\"warning-cause\"{}><summary><strong>{}</strong> ({}): {}</summary><ul>\n",
+        g.open ? " open" : "", g.heading, g.warnings.size(), g.severity);
+    for (std::size_t i : g.warnings)
+      h += "<li>" + (i < prefixes.size() ? isolated(prefixes[i]) : std::string()) +
+           svg::escape(warnings[i]) + "</li>\n";
+    h += "</ul></details>\n";
+  }
+  return h + "</div>\n";
+}
+
+}  // namespace frictionid::html
+
+namespace frictionid {
 namespace {
 
 // A cause of warnings: the words that mark its warnings, its heading and its one-line severity.
@@ -147,7 +170,7 @@ const std::vector<WarningCause>& warning_causes() {
        "The fit did not finish",
        "severe: the estimates may not be at the optimum; do not use them as they are.",
        true},
-      {{"far more than outliers", "the fit explains", "every measured value of", "is not fitted"},
+      {{"far more than outliers", "the fit explains"},
        "The model misses a channel",
        "severe: a misfit, not noise; the estimates and their errors describe the wrong model. "
        "Check sign conventions, units and column names, or compare models.",
@@ -175,39 +198,26 @@ const std::vector<WarningCause>& warning_causes() {
   return causes;
 }
 
-std::size_t cause_of(const std::string& w) {
-  const auto& causes = warning_causes();
-  for (std::size_t k = 0; k < causes.size(); ++k)
-    for (const char* m : causes[k].marks)
-      if (w.find(m) != std::string::npos) return k;
-  return causes.size();
-}
-
 }  // namespace
 
-std::string warnings_section(const std::vector<std::string>& warnings,
-                             const std::vector<std::string>& prefixes, const std::string& none) {
-  if (warnings.empty()) return "<p class=\"ok\" id=\"warnings\">" + svg::escape(none) + "</p>\n";
+std::vector<WarningGroup> group_warnings(const std::vector<std::string>& warnings) {
   const auto& causes = warning_causes();
-  std::vector<std::vector<std::size_t>> by_cause(causes.size() + 1);
-  for (std::size_t i = 0; i < warnings.size(); ++i) by_cause[cause_of(warnings[i])].push_back(i);
-  std::string h = fmt::format(
-      "<div class=\"warnings\" id=\"warnings\"><h2>Warnings</h2>\n<p>{} warning{}, by cause, "
-      "the most severe first; click a cause to unfold its warnings.</p>\n",
-      warnings.size(), warnings.size() == 1 ? "" : "s");
-  for (std::size_t k = 0; k <= causes.size(); ++k) {
-    if (by_cause[k].empty()) continue;
-    const bool other = k == causes.size();
-    h += fmt::format(
-        "<details class=\"warning-cause\"{}><summary><strong>{}</strong> ({}): {}</summary><ul>\n",
-        !other && causes[k].open ? " open" : "", other ? "Other" : causes[k].heading,
-        by_cause[k].size(), other ? "read each: it names what to check." : causes[k].severity);
-    for (std::size_t i : by_cause[k])
-      h += "<li>" + (i < prefixes.size() ? isolated(prefixes[i]) : std::string()) +
-           svg::escape(warnings[i]) + "</li>\n";
-    h += "</ul></details>\n";
+  std::vector<WarningGroup> groups(causes.size() + 1);
+  for (std::size_t k = 0; k < causes.size(); ++k)
+    groups[k] = {causes[k].heading, causes[k].severity, causes[k].open, {}};
+  groups.back() = {"Other", "read each: it names what to check.", false, {}};
+  for (std::size_t i = 0; i < warnings.size(); ++i) {
+    std::size_t k = 0;
+    for (; k < causes.size(); ++k)
+      if (std::any_of(causes[k].marks.begin(), causes[k].marks.end(),
+                      [&](const char* m) { return warnings[i].find(m) != std::string::npos; }))
+        break;
+    groups[k].warnings.push_back(i);
   }
-  return h + "</div>\n";
+  groups.erase(std::remove_if(groups.begin(), groups.end(),
+                              [](const WarningGroup& g) { return g.warnings.empty(); }),
+               groups.end());
+  return groups;
 }
 
-}  // namespace frictionid::html
+}  // namespace frictionid

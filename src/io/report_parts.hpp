@@ -40,6 +40,17 @@ std::string join_channels(const std::vector<Channel>& cs);
 std::string parameter_note(const ParameterEstimate& p, const char* at_bound,
                            const char* undetermined);
 
+// Warnings grouped by cause, the most severe cause first (the fit did not finish, the model
+// misses a channel, outliers, the noise model, undetermined parameters, closed-form
+// coefficients, other): the cause's heading, a one-line severity, whether a page shows it
+// unfolded, and its warnings' indices in the order given. Causes without warnings are left out.
+struct WarningGroup {
+  std::string heading, severity;
+  bool open = false;
+  std::vector<std::size_t> warnings;
+};
+std::vector<WarningGroup> group_warnings(const std::vector<std::string>& warnings);
+
 // The summary of channel c in r, or nullptr when c was not fitted.
 const ChannelSummary* find_summary(const FitResult& r, Channel c);
 
