@@ -23,8 +23,9 @@ struct ModelComparison {
   std::map<std::string, double> implied_by_exact;
   // Lag-1 autocorrelation of each fit's residuals, per channel, whitened by the common noise
   // below, ordered by eps within each curve (slip_curve: rows of one slip direction, spin sign,
-  // tilt sign, load and radius) and pooled over the curves: near 0 for a model that explains
-  // the shape, near 1 for a systematic (shape) misfit.
+  // tilt sign, load and radius; coarser when fewer than half the rows share their curve: spin
+  // sign, tilt sign and direction to 10 degrees) and pooled over the curves: near 0 for a model
+  // that explains the shape, near 1 for a systematic (shape) misfit.
   std::vector<std::map<std::string, double>> residual_autocorrelation;
   // Each fit estimates its own noise, so its own chi2 is close to the number of cells whatever
   // the fit: chi2 values of different fits are not comparable. chi2_common[k] is fit k's sum of

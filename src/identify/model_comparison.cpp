@@ -131,11 +131,27 @@ ModelComparison compare_models(const Dataset& data, const std::vector<FitSetting
     sigma[static_cast<int>(cs.channel)] = fit_sigma(c.fits[best], data, cs.channel);
 
   // The rows of each curve (slip_curve, load and radius) in eps order (ties by row index):
-  // residual runs along a curve show shape misfits; runs across curves would mix them.
+  // residual runs along a curve show shape misfits; runs across curves would mix them. Measured
+  // kinematics may give nearly every row its own direction or load: when fewer than half the
+  // rows share their curve with another, the curves are coarser, of one spin sign, tilt sign
+  // and slip direction to the nearest 10 degrees.
   const auto& eps = c.fits.front().eps;
-  std::map<std::tuple<SlipCurve, double, double>, std::vector<std::size_t>> curves;
+  using CurveKey = std::tuple<SlipCurve, double, double>;
+  std::map<CurveKey, std::vector<std::size_t>> curves;
   for (std::size_t i = 0; i < data.rows(); ++i)
     curves[{slip_curve(data, i), data.N[i], data.R[i]}].push_back(i);
+  std::size_t shared = 0;
+  for (const auto& [key, rows] : curves)
+    if (rows.size() > 1) shared += rows.size();
+  if (2 * shared < data.rows()) {
+    curves.clear();
+    constexpr double kTenDegrees = 1e6 * 3.14159265358979323846 / 18;  // micro-radians
+    for (std::size_t i = 0; i < data.rows(); ++i) {
+      SlipCurve k = slip_curve(data, i);
+      k.direction = std::llround(static_cast<double>(k.direction) / kTenDegrees);
+      curves[{k, 0.0, 0.0}].push_back(i);
+    }
+  }
   for (auto& [key, rows] : curves)
     std::stable_sort(rows.begin(), rows.end(), [&](std::size_t a, std::size_t b) {
       return eps.size() == data.rows() && eps[a] < eps[b];
