@@ -174,15 +174,20 @@ void quality_section(std::string& h, const ModelComparison& c) {
   line(h, "</tbody></table>");
   line(h,
        "<p>AIC and BIC: lower is better; the Δ columns are the differences to the best model. "
-       "They count each model's own noise estimate (docs/physics.md §8.7), so they compare "
-       "models that whiten differently.</p>");
-  line(h, fmt::format(
-              "<p>χ², one noise: every model's residuals divided by the same sigma per row, that "
-              "of the noise estimated for <strong>{}</strong> (the model AIC prefers), so that "
-              "these χ² compare. Each model's own χ² (in compare.json) divides by its own noise "
-              "estimate, which makes it close to the number of cells for every model: it does "
-              "not rank them.</p>",
-              escape(c.fits[std::min(c.common_noise_fit, c.fits.size() - 1)].model)));
+       "They include the log-likelihood of each model's noise (docs/physics.md §8.7), so they "
+       "compare models even where each estimates its own noise.</p>");
+  if (compare_estimates_noise(c))
+    line(h, fmt::format(
+                "<p>χ², one noise: every model's residuals divided by the same sigma per row, "
+                "that of the noise estimated for <strong>{}</strong> (the model AIC prefers), so "
+                "that these χ² compare. Each model's own χ² (in compare.json) divides by its own "
+                "noise estimate, which makes it close to the number of cells for every model: "
+                "it does not rank them.</p>",
+                escape(c.fits[std::min(c.common_noise_fit, c.fits.size() - 1)].model)));
+  else
+    line(h,
+         "<p>χ², one noise: every model's residuals divided by the same sigma per row (the "
+         "sigma columns or fixed scales, alike for every model).</p>");
   line(h,
        "<p>Residual lag-1 correlation: of the residuals (divided by the same sigma) in eps "
        "order along each curve of one slip direction, spin sign, tilt sign, load and radius, "
@@ -257,9 +262,12 @@ std::string compare_html_page(const ModelComparison& c, const std::vector<Report
     return h + html::provenance_section(provenance) + html::page_end();
   }
   line(h, fmt::format("<p class=\"summary\">{} rows; the same rows and channels for every model, "
-                      "each with its own noise estimate. Preferred by AIC: <strong>{}</strong>; by "
-                      "BIC: <strong>{}</strong>.</p>",
-                      c.fits.front().rows, escape(c.preferred_by_aic), escape(c.preferred_by_bic)));
+                      "{}. Preferred by AIC: <strong>{}</strong>; by BIC: <strong>{}</strong>.</p>",
+                      c.fits.front().rows,
+                      compare_estimates_noise(c)
+                          ? "each whitened by its own noise estimate"
+                          : "the same whitening for every model (sigma columns or fixed scales)",
+                      escape(c.preferred_by_aic), escape(c.preferred_by_bic)));
   warnings_section(h, c);
   quality_section(h, c);
   parameter_section(h, c);

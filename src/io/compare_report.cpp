@@ -47,6 +47,13 @@ const std::string& contact_of(const std::vector<std::string>& contacts, std::siz
 
 }  // namespace
 
+bool compare_estimates_noise(const ModelComparison& c) {
+  for (const auto& f : c.fits)
+    for (const auto& cs : f.channel_summaries)
+      if (cs.noise) return true;
+  return false;
+}
+
 ModelComparison compare_named_variants(const ModelComparison& c,
                                        const std::vector<std::string>& contacts) {
   if (contacts.empty()) return c;
@@ -185,10 +192,14 @@ std::string compare_markdown(const ModelComparison& compared, const std::vector<
   std::string md = "# frictionid compare\n\n";
   if (c.fits.empty()) return md + "No models were fitted.\n\n" + provenance_markdown(provenance);
   const FitResult& first = c.fits.front();
+  const bool estimated = compare_estimates_noise(c);
   md += fmt::format(
-      "{} rows; the same rows and channels for every model, each with its own noise estimate. "
-      "Preferred by AIC: **{}**; by BIC: **{}**.\n\n",
-      first.rows, c.preferred_by_aic, c.preferred_by_bic);
+      "{} rows; the same rows and channels for every model, {}. Preferred by AIC: **{}**; by "
+      "BIC: **{}**.\n\n",
+      first.rows,
+      estimated ? "each whitened by its own noise estimate"
+                : "the same whitening for every model (sigma columns or fixed scales)",
+      c.preferred_by_aic, c.preferred_by_bic);
   md += "## Fit quality\n\n| model | AIC | ΔAIC | BIC | ΔBIC | χ², one noise |";
   for (const auto& cs : first.channel_summaries)
     md += fmt::format(" RMSE {} | residual lag-1 corr. {} |", channel_name(cs.channel),
@@ -209,15 +220,23 @@ std::string compare_markdown(const ModelComparison& compared, const std::vector<
     }
     md += "\n";
   }
-  md += fmt::format(
-      "\nAIC and BIC count each model's own noise estimate (docs/physics.md §8.7). χ², one "
-      "noise: every model's residuals divided by the sigma per row of the noise estimated for "
-      "{} (the model AIC prefers), so that these compare; each model's own χ² (compare.json) is "
-      "close to the number of cells for every model and does not rank them. Residual lag-1 "
-      "correlation: of those residuals in eps order along each curve of one slip direction, "
-      "spin sign, tilt sign, load and radius, pooled; near 1 a systematic shape misfit, near 0 "
-      "noise.\n\n## Parameters\n\n| parameter |",
-      c.fits[std::min(c.common_noise_fit, c.fits.size() - 1)].model);
+  const std::string& whose = c.fits[std::min(c.common_noise_fit, c.fits.size() - 1)].model;
+  md += "\n" +
+        (estimated
+             ? fmt::format(
+                   "AIC and BIC include the log-likelihood of each model's own noise estimate "
+                   "(docs/physics.md §8.7). "
+                   "χ², one noise: every model's residuals divided by the sigma per row of the "
+                   "noise estimated for {} (the model AIC prefers), so that these compare; each "
+                   "model's own χ² (compare.json) is close to the number of cells for every model "
+                   "and does not rank them.",
+                   whose)
+             : std::string("χ², one noise: every model's residuals divided by the same sigma per "
+                           "row (the sigma columns or fixed scales, alike for every model)."));
+  md +=
+      " Residual lag-1 correlation: of those residuals in eps order along each curve of one slip "
+      "direction, spin sign, tilt sign, load and radius, pooled; near 1 a systematic shape "
+      "misfit, near 0 noise.\n\n## Parameters\n\n| parameter |";
   for (const auto& f : c.fits) md += " " + f.model + " |";
   if (!c.implied_by_exact.empty()) md += " implied by exact |";
   md += "\n|---|";

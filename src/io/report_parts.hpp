@@ -93,6 +93,10 @@ std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& 
 // ", contact ellipse:0.6" for a report's title; empty for the circle (plain text).
 std::string contact_words(const std::string& contact);
 
+// Whether any compared fit estimated a channel's noise: then each model is whitened by its own
+// estimate, and only the chi2 under one noise (ModelComparison::chi2_common) compares.
+bool compare_estimates_noise(const ModelComparison& c);
+
 // Per channel every compared model over the measured data (compare_<channel>.svg), and
 // compare.html from them.
 std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d);

@@ -104,6 +104,9 @@ TEST(CompareHtml, ShowsTheChi2UnderOneNoiseNotEachModelsOwn) {
   c.fits[1].chi2 = 10.0;  // exact
   c.chi2_common = {431.0, 10.0};
   c.common_noise_fit = 1;
+  for (auto& f : c.fits)
+    f.channel_summaries[0].noise =
+        NoiseEstimate{NoiseModelKind::Constant, "constant", 0.5, 0.0, 0.0, ""};
   const std::string html = compare_html(c, d);
   EXPECT_EQ(html.find("whitening for every"), std::string::npos);
   EXPECT_NE(html.find("<th>χ², one noise</th>"), std::string::npos);
@@ -112,6 +115,16 @@ TEST(CompareHtml, ShowsTheChi2UnderOneNoiseNotEachModelsOwn) {
   EXPECT_NE(table.find("data-value=\"431\""), std::string::npos);
   EXPECT_EQ(table.substr(0, table.find("</table>")).find("data-value=\"9\""), std::string::npos)
       << "the seed's own chi2 is in the table";
+}
+
+// Without any noise estimate (sigma columns or fixed scales) every model is whitened alike, and
+// the page says so.
+TEST(CompareHtml, SaysTheWhiteningIsCommonWhenNoModelEstimatesNoise) {
+  const Dataset d = make_dataset();
+  const std::string html = compare_html(make_comparison(d), d);
+  EXPECT_NE(html.find("the same whitening for every model (sigma columns or fixed scales)"),
+            std::string::npos);
+  EXPECT_EQ(html.find("own noise estimate"), std::string::npos);
 }
 
 }  // namespace
