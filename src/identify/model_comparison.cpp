@@ -52,9 +52,15 @@ double collapse_factor(const Dataset& d, Channel c, std::size_t i) {
   return 1.0;
 }
 
+namespace {
+double v_y_at(const Dataset& d, std::size_t i) {
+  return i < d.v_y.size() ? d.v_y[i] : 0.0;  // a dataset built by hand may leave v_y empty
+}
+}  // namespace
+
 SlipCurve slip_curve(const Dataset& d, std::size_t i) {
   SlipCurve k;
-  k.direction = std::llround(std::atan2(d.v_y[i], d.v_x[i]) * 1e6);
+  k.direction = std::llround(std::atan2(v_y_at(d, i), d.v_x[i]) * 1e6);
   k.spin = d.omega[i] < 0.0 ? -1 : 1;
   k.tilt = d.tilt_sign_at(i) < 0.0 ? -1 : 1;
   return k;
@@ -63,7 +69,7 @@ SlipCurve slip_curve(const Dataset& d, std::size_t i) {
 double mirrored_slip_angle_deg(const Dataset& d, std::size_t i) {
   const double s = d.omega[i] < 0.0 ? -1.0 : 1.0;
   const double deg =
-      std::atan2(s * d.v_y[i], std::fabs(d.v_x[i])) * (180.0 / 3.14159265358979323846);
+      std::atan2(s * v_y_at(d, i), std::fabs(d.v_x[i])) * (180.0 / 3.14159265358979323846);
   // To 1e-6 degrees, so that one angle written by different rounding of v_x and v_y stays one.
   const double rounded = std::round(deg * 1e6) / 1e6;
   return rounded == 0.0 ? 0.0 : rounded;  // no -0
