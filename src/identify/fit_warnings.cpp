@@ -180,8 +180,8 @@ void warn_closed_form_coefficients(const LocalProblem& lp, const ParamVector& x,
     if (!(std::fabs(x[i] - v) > 3.0 * *e->std_error)) continue;
     res.warnings.push_back(
         std::string(param_names()[i]) + " = " + number_text(x[i]) + " differs from the value " +
-        number_text(v) + " that the " + s.law_label + " pressure implies by " +
-        number_text(std::fabs(x[i] - v) / *e->std_error) +
+        number_text(v) + " that the " + s.law_label + " pressure implies at this fit's kappa = " +
+        number_text(x[kKappa]) + " by " + number_text(std::fabs(x[i] - v) / *e->std_error) +
         " standard errors: the closed forms are approximations (errors of tens of percent "
         "near eps = 1, docs/physics.md section 3), so fitted coefficients need not equal the "
         "matched "

@@ -2,6 +2,7 @@
 // and per channel every model over the measured data, divided by load and parity sign.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +22,9 @@ using html::num_cell;
 using svg::escape;
 
 constexpr const char* kModelColours[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e"};
+constexpr const char* kModelDashes[] = {"", "7 4", "2 3", "9 3 2 3", "4 4"};
+// More curves (slip direction, spin sign, tilt sign) than this: models as dots, not lines.
+constexpr std::size_t kMaxCompareCurves = 24;
 
 const ParameterEstimate* find_param(const FitResult& f, const std::string& name) {
   for (const auto& p : f.parameters)
@@ -46,33 +50,75 @@ std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d
     p.x_label = "eps = v/(|omega| R)";
     p.y_label = fmt::format("{} / {} (parity sign removed)", name, divisor);
     p.log_x = true;
+    p.y_reference = 0.0;
     if (step > 1) p.notes.push_back(plotted_rows_note(n));
-    svg::Series measured{"measured", "#666666", svg::Mark::Dots, {}, {}};
-    std::vector<svg::Series> models;
-    for (std::size_t k = 0; k < c.fits.size(); ++k)
-      models.push_back({c.fits[k].model, kModelColours[k % 5], svg::Mark::Dots, {}, {}});
+    svg::Series measured("measured", "#999999", svg::Mark::Dots);
+    measured.tag = "measured";
+    // The plotted rows of each curve (slip_curve), sorted by eps: a model's collapsed
+    // predictions along one curve are a line.
+    std::map<SlipCurve, std::vector<std::size_t>> curves;
     for (std::size_t i = 0; i < n; ++i) {
       if (!plotted_row(i, step) || !d.present[ci][i] || !(eps[i] > 0.0) || !std::isfinite(eps[i]))
         continue;
-      const double s = collapse_factor(d, ch, i);
       measured.x.push_back(eps[i]);
-      measured.y.push_back(d.value[ci][i] * s);
-      for (std::size_t k = 0; k < c.fits.size(); ++k)
-        if (c.fits[k].fitted[ci].size() == n) {
-          models[k].x.push_back(eps[i]);
-          models[k].y.push_back(c.fits[k].fitted[ci][i] * s);
-        }
+      measured.y.push_back(d.value[ci][i] * collapse_factor(d, ch, i));
+      curves[slip_curve(d, i)].push_back(i);
     }
     if (measured.x.empty()) continue;
+    if (measured.x.size() > 1500) measured.dot_size = 2.6, measured.opacity = 0.4;
+    for (auto& [key, rows] : curves)
+      std::stable_sort(rows.begin(), rows.end(),
+                       [&](std::size_t a, std::size_t b) { return eps[a] < eps[b]; });
+    const bool lines = curves.size() <= kMaxCompareCurves;
     p.series.push_back(std::move(measured));
-    for (auto& m : models) p.series.push_back(std::move(m));
+    // Every model as lines, each in its colour and dash pattern with a white outline, so that a
+    // model that agrees with another shows as a dashed line over it; with more curves than
+    // kMaxCompareCurves, as dots of decreasing size, the first model's largest.
+    for (std::size_t k = 0; k < c.fits.size(); ++k) {
+      const auto& fitted = c.fits[k].fitted[ci];
+      if (fitted.size() != n) continue;
+      const char* colour = kModelColours[k % 5];
+      if (!lines) {
+        svg::Series dots(c.fits[k].model, colour, svg::Mark::Dots);
+        dots.tag = c.fits[k].model;
+        dots.dot_size = std::max(1.2, 3.4 - 0.7 * static_cast<double>(k));
+        dots.opacity = 0.9;
+        for (const auto& [key, rows] : curves)
+          for (std::size_t i : rows) {
+            dots.x.push_back(eps[i]);
+            dots.y.push_back(fitted[i] * collapse_factor(d, ch, i));
+          }
+        p.series.push_back(std::move(dots));
+        continue;
+      }
+      bool first = true;
+      for (const auto& [key, rows] : curves) {
+        svg::Series line(first ? c.fits[k].model : "", colour, svg::Mark::Line);
+        first = false;
+        line.tag = c.fits[k].model;
+        line.outline = true;
+        line.dash = kModelDashes[k % 5];
+        for (std::size_t i : rows) {
+          line.x.push_back(eps[i]);
+          line.y.push_back(fitted[i] * collapse_factor(d, ch, i));
+        }
+        p.series.push_back(std::move(line));
+      }
+    }
     ReportPlot out;
     out.file = "compare_" + name + ".svg";
     out.heading = name;
     out.caption = fmt::format(
-        "Measured {0} (grey) and each model's prediction at the same rows, divided by {1} and "
-        "by the parity sign, against eps (rows with eps = 0 or inf left out).",
-        name, divisor);
+        "Measured {0} (grey dots) and each model's prediction at the same rows, divided by {1} "
+        "and by the parity sign (sgn v_x for T_x, sgn omega for T_y and M_z), against eps (rows "
+        "with eps = 0 or inf left out). {2}",
+        name, divisor,
+        lines ? "Each model is drawn as lines in its own colour and dash pattern, one line per "
+                "slip direction, spin sign and tilt sign, sorted by eps; where two models "
+                "agree their lines overlap and both dash patterns show."
+              : fmt::format("More than {} slip directions and spin signs: each model as dots, "
+                            "the later models' smaller, so that every model shows.",
+                            kMaxCompareCurves));
     if (step > 1) out.caption += " (" + plotted_rows_note(n) + ".)";
     out.svg = svg::render(p);
     plots.push_back(std::move(out));
@@ -88,24 +134,21 @@ void line(std::string& h, const std::string& s) {
 }
 
 void warnings_section(std::string& h, const ModelComparison& c) {
-  std::vector<std::string> warnings;
+  std::vector<std::string> warnings, models;
   for (const auto& f : c.fits)
-    for (const auto& w : f.warnings) warnings.push_back(f.model + ": " + w);
-  if (warnings.empty()) {
-    line(h, "<p class=\"ok\" id=\"warnings\">No warnings for any model.</p>");
-    return;
-  }
-  line(h, "<div class=\"warnings\" id=\"warnings\"><h2>Warnings</h2><ul>");
-  for (const auto& w : warnings) line(h, "<li>" + escape(w) + "</li>");
-  line(h, "</ul></div>");
+    for (const auto& w : f.warnings) {
+      warnings.push_back(w);
+      models.push_back(f.model + ": ");
+    }
+  h += html::warnings_section(warnings, models, "No warnings for any model.");
 }
 
 void quality_section(std::string& h, const ModelComparison& c) {
   const FitResult& first = c.fits.front();
   line(h, "<h2 id=\"quality\">Fit quality</h2>");
   std::string head =
-      "<table class=\"sortable\"><thead><tr><th>model</th><th>cost</th><th>χ²</th><th>AIC</th>"
-      "<th>ΔAIC</th><th>BIC</th><th>ΔBIC</th>";
+      "<table class=\"sortable\"><thead><tr><th>model</th><th>AIC</th><th>ΔAIC</th><th>BIC</th>"
+      "<th>ΔBIC</th><th>χ², one noise</th>";
   for (const auto& cs : first.channel_summaries)
     head +=
         fmt::format("<th>RMSE {0}</th><th>residual lag-1 corr. {0}</th>", channel_name(cs.channel));
@@ -114,8 +157,9 @@ void quality_section(std::string& h, const ModelComparison& c) {
     const FitResult& f = c.fits[k];
     std::string row =
         fmt::format("<tr data-model=\"{}\"><td>{}</td>", escape(f.model), escape(f.model));
-    row += num_cell(f.cost) + num_cell(f.chi2) + num_cell(f.aic) + num_cell(c.delta_aic[k]) +
-           num_cell(f.bic) + num_cell(c.delta_bic[k]);
+    row +=
+        num_cell(f.aic) + num_cell(c.delta_aic[k]) + num_cell(f.bic) + num_cell(c.delta_bic[k]) +
+        num_cell(k < c.chi2_common.size() ? std::optional<double>(c.chi2_common[k]) : std::nullopt);
     for (const auto& cs : first.channel_summaries) {
       const ChannelSummary* own = find_summary(f, cs.channel);
       row += num_cell(own ? own->rmse : std::nullopt);
@@ -129,9 +173,25 @@ void quality_section(std::string& h, const ModelComparison& c) {
   }
   line(h, "</tbody></table>");
   line(h,
-       "<p>A residual lag-1 correlation near 1 (residuals ordered by eps) is a systematic shape "
-       "misfit; near 0, noise. AIC and BIC: lower is better; the Δ columns are the differences "
-       "to the best model.</p>");
+       "<p>AIC and BIC: lower is better; the Δ columns are the differences to the best model. "
+       "They include the log-likelihood of each model's noise (docs/physics.md §8.7), so they "
+       "compare models even where each estimates its own noise.</p>");
+  if (compare_estimates_noise(c))
+    line(h, fmt::format(
+                "<p>χ², one noise: every model's residuals divided by the same sigma per row, "
+                "that of the noise estimated for <strong>{}</strong> (the model AIC prefers), so "
+                "that these χ² compare. Each model's own χ² (in compare.json) divides by its own "
+                "noise estimate, which makes it close to the number of cells for every model: "
+                "it does not rank them.</p>",
+                escape(c.fits[std::min(c.common_noise_fit, c.fits.size() - 1)].model)));
+  else
+    line(h,
+         "<p>χ², one noise: every model's residuals divided by the same sigma per row (the "
+         "sigma columns or fixed scales, alike for every model).</p>");
+  line(h,
+       "<p>Residual lag-1 correlation: of the residuals (divided by the same sigma) in eps "
+       "order along each curve of one slip direction, spin sign, tilt sign, load and radius, "
+       "pooled over the curves. Near 1 is a systematic shape misfit; near 0, noise.</p>");
 }
 
 void parameter_section(std::string& h, const ModelComparison& c) {
@@ -201,10 +261,13 @@ std::string compare_html_page(const ModelComparison& c, const std::vector<Report
     line(h, "<p>No models were fitted.</p>");
     return h + html::provenance_section(provenance) + html::page_end();
   }
-  line(h,
-       fmt::format("<p class=\"summary\">{} rows; the same rows, channels and whitening for every "
-                   "model. Preferred by AIC: <strong>{}</strong>; by BIC: <strong>{}</strong>.</p>",
-                   c.fits.front().rows, escape(c.preferred_by_aic), escape(c.preferred_by_bic)));
+  line(h, fmt::format("<p class=\"summary\">{} rows; the same rows and channels for every model, "
+                      "{}. Preferred by AIC: <strong>{}</strong>; by BIC: <strong>{}</strong>.</p>",
+                      c.fits.front().rows,
+                      compare_estimates_noise(c)
+                          ? "each whitened by its own noise estimate"
+                          : "the same whitening for every model (sigma columns or fixed scales)",
+                      escape(c.preferred_by_aic), escape(c.preferred_by_bic)));
   warnings_section(h, c);
   quality_section(h, c);
   parameter_section(h, c);

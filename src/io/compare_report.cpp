@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include <frictionid/io/report_writer.hpp>
@@ -46,6 +47,13 @@ const std::string& contact_of(const std::vector<std::string>& contacts, std::siz
 
 }  // namespace
 
+bool compare_estimates_noise(const ModelComparison& c) {
+  for (const auto& f : c.fits)
+    for (const auto& cs : f.channel_summaries)
+      if (cs.noise) return true;
+  return false;
+}
+
 ModelComparison compare_named_variants(const ModelComparison& c,
                                        const std::vector<std::string>& contacts) {
   if (contacts.empty()) return c;
@@ -82,6 +90,10 @@ std::string compare_variant_directory(const std::string& name) {
 std::vector<std::string> coefficient_notes(const ModelComparison& c) {
   std::vector<std::string> notes;
   if (c.implied_by_exact.empty()) return notes;
+  std::optional<double> exact_kappa;
+  for (const auto& f : c.fits)
+    if (f.model_kind == ModelKind::Exact && !exact_kappa && f.parameter("kappa"))
+      exact_kappa = f.parameter("kappa")->value;
   for (const auto& f : c.fits) {
     if (f.model_kind == ModelKind::Exact) continue;
     for (const char* name : {"a", "b", "b_tilde", "m", "p0"}) {
@@ -89,20 +101,29 @@ std::vector<std::string> coefficient_notes(const ModelComparison& c) {
       if (!p || p->fixed || !c.implied_by_exact.count(name)) continue;
       const double implied = c.implied_by_exact.at(name);
       const double rel = (p->value - implied) / implied;
+      // The implied value is at the exact fit's kappa; a warning of the closed-form fit itself
+      // compares with the law's value at that fit's own kappa, which may differ.
+      const std::string at =
+          exact_kappa ? " (at the exact fit's kappa = " + g6(*exact_kappa) +
+                            "; the closed-form fit's own warning, if any, "
+                            "uses its own kappa = " +
+                            g6(f.parameter("kappa") ? f.parameter("kappa")->value : 1.0) +
+                            ", hence a different value)"
+                      : std::string();
       if (std::fabs(rel) <= 0.05) {
         notes.push_back(
             fmt::format("{}: fitted {} = {} agrees within 5% with {} implied by the exact fit's "
-                        "pressure shape: "
+                        "pressure shape{}: "
                         "the data are consistent with the slope-matched coefficient.",
-                        f.model, name, g6(p->value), g6(implied)));
+                        f.model, name, g6(p->value), g6(implied), at));
       } else {
         notes.push_back(fmt::format(
             "{}: fitted {} = {} differs by {:+.0f}% from {} implied by the exact fit's pressure "
-            "shape: the closed form's eps-shape is not the integral model's (errors of tens of "
+            "shape{}: the closed form's eps-shape is not the integral model's (errors of tens of "
             "percent near eps = 1, docs/physics.md section 3), so {} absorbs that shape error "
             "instead of "
             "measuring the pressure distribution; read it as a curve-fit constant.",
-            f.model, name, g6(p->value), 100 * rel, g6(implied), name));
+            f.model, name, g6(p->value), 100 * rel, g6(implied), at, name));
       }
     }
   }
@@ -137,6 +158,8 @@ nlohmann::ordered_json compare_json(const ModelComparison& c, const Provenance& 
     m["bic"] = json_number(f.bic);
     m["delta_aic"] = json_number(c.delta_aic[k]);
     m["delta_bic"] = json_number(c.delta_bic[k]);
+    m["chi2_one_noise"] = json_number(
+        k < c.chi2_common.size() ? std::optional<double>(c.chi2_common[k]) : std::nullopt);
     ojson rmse, ac;
     for (const auto& cs : f.channel_summaries)
       rmse[channel_name(cs.channel)] = json_number(cs.rmse);
@@ -149,6 +172,10 @@ nlohmann::ordered_json compare_json(const ModelComparison& c, const Provenance& 
   j["models"] = models;
   j["preferred_by_aic"] = named.preferred_by_aic;
   j["preferred_by_bic"] = named.preferred_by_bic;
+  j["one_noise_of"] =
+      named.fits.empty()
+          ? ojson(nullptr)
+          : ojson(named.fits[std::min(named.common_noise_fit, named.fits.size() - 1)].model);
   ojson implied = ojson::object();
   for (const char* name : {"a", "b", "m", "b_tilde", "p0"})
     if (c.implied_by_exact.count(name)) implied[name] = json_number(c.implied_by_exact.at(name));
@@ -165,21 +192,26 @@ std::string compare_markdown(const ModelComparison& compared, const std::vector<
   std::string md = "# frictionid compare\n\n";
   if (c.fits.empty()) return md + "No models were fitted.\n\n" + provenance_markdown(provenance);
   const FitResult& first = c.fits.front();
+  const bool estimated = compare_estimates_noise(c);
   md += fmt::format(
-      "{} rows; the same rows, channels and whitening for every model. Preferred "
-      "by AIC: **{}**; by BIC: **{}**.\n\n",
-      first.rows, c.preferred_by_aic, c.preferred_by_bic);
-  md += "## Fit quality\n\n| model | cost | χ² | AIC | ΔAIC | BIC | ΔBIC |";
+      "{} rows; the same rows and channels for every model, {}. Preferred by AIC: **{}**; by "
+      "BIC: **{}**.\n\n",
+      first.rows,
+      estimated ? "each whitened by its own noise estimate"
+                : "the same whitening for every model (sigma columns or fixed scales)",
+      c.preferred_by_aic, c.preferred_by_bic);
+  md += "## Fit quality\n\n| model | AIC | ΔAIC | BIC | ΔBIC | χ², one noise |";
   for (const auto& cs : first.channel_summaries)
     md += fmt::format(" RMSE {} | residual lag-1 corr. {} |", channel_name(cs.channel),
                       channel_name(cs.channel));
-  md += "\n|---|---|---|---|---|---|---|";
+  md += "\n|---|---|---|---|---|---|";
   for (std::size_t i = 0; i < first.channel_summaries.size(); ++i) md += "---|---|";
   md += "\n";
   for (std::size_t k = 0; k < c.fits.size(); ++k) {
     const FitResult& f = c.fits[k];
-    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |", f.model, g6(f.cost), g6(f.chi2),
-                      g6(f.aic), g6(c.delta_aic[k]), g6(f.bic), g6(c.delta_bic[k]));
+    md += fmt::format("| {} | {} | {} | {} | {} | {} |", f.model, g6(f.aic), g6(c.delta_aic[k]),
+                      g6(f.bic), g6(c.delta_bic[k]),
+                      k < c.chi2_common.size() ? g6(c.chi2_common[k]) : "—");
     for (const auto& cs : f.channel_summaries) {
       const auto it = c.residual_autocorrelation[k].find(channel_name(cs.channel));
       md += fmt::format(
@@ -188,9 +220,23 @@ std::string compare_markdown(const ModelComparison& compared, const std::vector<
     }
     md += "\n";
   }
+  const std::string& whose = c.fits[std::min(c.common_noise_fit, c.fits.size() - 1)].model;
+  md += "\n" +
+        (estimated
+             ? fmt::format(
+                   "AIC and BIC include the log-likelihood of each model's own noise estimate "
+                   "(docs/physics.md §8.7). "
+                   "χ², one noise: every model's residuals divided by the sigma per row of the "
+                   "noise estimated for {} (the model AIC prefers), so that these compare; each "
+                   "model's own χ² (compare.json) is close to the number of cells for every model "
+                   "and does not rank them.",
+                   whose)
+             : std::string("χ², one noise: every model's residuals divided by the same sigma per "
+                           "row (the sigma columns or fixed scales, alike for every model)."));
   md +=
-      "\nA residual lag-1 correlation near 1 (residuals ordered by eps) is a systematic shape "
-      "misfit; near 0, noise.\n\n## Parameters\n\n| parameter |";
+      " Residual lag-1 correlation: of those residuals in eps order along each curve of one slip "
+      "direction, spin sign, tilt sign, load and radius, pooled; near 1 a systematic shape "
+      "misfit, near 0 noise.\n\n## Parameters\n\n| parameter |";
   for (const auto& f : c.fits) md += " " + f.model + " |";
   if (!c.implied_by_exact.empty()) md += " implied by exact |";
   md += "\n|---|";

@@ -1,5 +1,6 @@
 #include "io/html_page.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -20,9 +21,12 @@ h2 { border-bottom: 1px solid #ddd; padding-bottom: 0.15em; margin-top: 1.6em; }
 .warnings { background: #fff4d6; border: 1px solid #e0b84c; padding: 0.4em 1em; }
 .ok { background: #e9f6e9; border: 1px solid #8cc68c; padding: 0.4em 1em; }
 .warnings h2 { margin-top: 0.4em; }
+details.warning-cause { margin: 0.4em 0; }
+details.warning-cause summary { cursor: pointer; }
 nav { margin: 0.8em 0; }
 nav a { margin-right: 1em; }
-table { border-collapse: collapse; margin: 0.6em 0; }
+table { border-collapse: collapse; margin: 0.6em 0; display: block; max-width: 100%;
+        overflow-x: auto; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; }
 th { background: #f3f3f3; }
 table.sortable th { cursor: pointer; }
@@ -37,12 +41,15 @@ dt { font-weight: bold; margin-top: 0.5em; }
 )";
 
 // Sorting by a click on a column header, and each plot's rendered size written into the DOM
-// (data-rendered-size on its figure) so that a headless browser's --dump-dom shows it.
+// (data-rendered-size on its figure), and the page's width beside the window's (data-widths on
+// the body: a wide table scrolls inside its box, so the page never outgrows the window), so that
+// a headless browser's --dump-dom shows them.
 constexpr const char* kScript = R"(
 for (const fig of document.querySelectorAll('figure.plot')) {
   const box = fig.querySelector('svg').getBoundingClientRect();
   fig.dataset.renderedSize = Math.round(box.width) + 'x' + Math.round(box.height);
 }
+document.body.dataset.widths = document.documentElement.scrollWidth + 'x' + window.innerWidth;
 for (const table of document.querySelectorAll('table.sortable')) {
   table.querySelectorAll('th').forEach((th, col) => {
     th.addEventListener('click', () => {
@@ -125,4 +132,92 @@ std::string isolated(const std::string& text) {
   return has_directional(text) ? "<bdi>" + escaped + "</bdi>" : escaped;
 }
 
+std::string warnings_section(const std::vector<std::string>& warnings,
+                             const std::vector<std::string>& prefixes, const std::string& none) {
+  if (warnings.empty()) return "<p class=\"ok\" id=\"warnings\">" + svg::escape(none) + "</p>\n";
+  std::string h = fmt::format(
+      "<div class=\"warnings\" id=\"warnings\"><h2>Warnings</h2>\n<p>{} warning{}, by cause, "
+      "the most severe first; click a cause to unfold its warnings.</p>\n",
+      warnings.size(), warnings.size() == 1 ? "" : "s");
+  for (const auto& g : group_warnings(warnings)) {
+    h += fmt::format(
+        "<details class=\"warning-cause\"{}><summary><strong>{}</strong> ({}): {}</summary><ul>\n",
+        g.open ? " open" : "", g.heading, g.warnings.size(), g.severity);
+    for (std::size_t i : g.warnings)
+      h += "<li>" + (i < prefixes.size() ? isolated(prefixes[i]) : std::string()) +
+           svg::escape(warnings[i]) + "</li>\n";
+    h += "</ul></details>\n";
+  }
+  return h + "</div>\n";
+}
+
 }  // namespace frictionid::html
+
+namespace frictionid {
+namespace {
+
+// A cause of warnings: the words that mark its warnings, its heading and its one-line severity.
+struct WarningCause {
+  std::vector<const char*> marks;
+  const char* heading;
+  const char* severity;
+  bool open;  // shown unfolded
+};
+
+const std::vector<WarningCause>& warning_causes() {
+  static const std::vector<WarningCause> causes = {
+      {{"did not converge", "no degree of freedom", "global stage failed"},
+       "The fit did not finish",
+       "severe: the estimates may not be at the optimum; do not use them as they are.",
+       true},
+      {{"far more than outliers", "the fit explains"},
+       "The model misses a channel",
+       "severe: a misfit, not noise; the estimates and their errors describe the wrong model. "
+       "Check sign conventions, units and column names, or compare models.",
+       true},
+      {{"looks like an outlier"},
+       "Outliers",
+       "moderate: a few rows far from the fit take weight from their channel; check them.",
+       false},
+      {{"noise estimate of", "grow with the measured magnitude", "from the noise model ("},
+       "Noise model",
+       "moderate: the weights of the rows, and the standard errors that rely on them, may be "
+       "off; the sandwich errors do not rely on them.",
+       false},
+      {{"not determined by the data", "strongly correlated", "poorly determined",
+        "does not close inside"},
+       "Parameters the data do not determine",
+       "moderate: some parameters, or their errors, are not pinned down by these rows.",
+       false},
+      {{"pressure implies at"},
+       "Closed-form coefficients",
+       "information: the closed forms are approximations, so their fitted coefficients need "
+       "not equal the pressure law's.",
+       false},
+  };
+  return causes;
+}
+
+}  // namespace
+
+std::vector<WarningGroup> group_warnings(const std::vector<std::string>& warnings) {
+  const auto& causes = warning_causes();
+  std::vector<WarningGroup> groups(causes.size() + 1);
+  for (std::size_t k = 0; k < causes.size(); ++k)
+    groups[k] = {causes[k].heading, causes[k].severity, causes[k].open, {}};
+  groups.back() = {"Other", "read each: it names what to check.", false, {}};
+  for (std::size_t i = 0; i < warnings.size(); ++i) {
+    std::size_t k = 0;
+    for (; k < causes.size(); ++k)
+      if (std::any_of(causes[k].marks.begin(), causes[k].marks.end(),
+                      [&](const char* m) { return warnings[i].find(m) != std::string::npos; }))
+        break;
+    groups[k].warnings.push_back(i);
+  }
+  groups.erase(std::remove_if(groups.begin(), groups.end(),
+                              [](const WarningGroup& g) { return g.warnings.empty(); }),
+               groups.end());
+  return groups;
+}
+
+}  // namespace frictionid

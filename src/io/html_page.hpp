@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <frictionid/io/provenance.hpp>
 
@@ -34,5 +35,13 @@ std::string provenance_section(const Provenance& p);
 // or a right-to-left letter, so that it cannot reorder the text around it. Other text cannot,
 // and is written as it always was.
 std::string isolated(const std::string& text);
+
+// Warnings grouped by cause, most severe first: per cause a heading with how many warnings it
+// holds and one line saying what it means for the results, and the warnings themselves folded
+// in a <details> element (open for the causes that make the numbers unusable). `prefixes` are
+// written before each warning's text (e.g. a model's name), empty for none. The section's id is
+// "warnings"; without warnings, `none` as a <p class="ok">.
+std::string warnings_section(const std::vector<std::string>& warnings,
+                             const std::vector<std::string>& prefixes, const std::string& none);
 
 }  // namespace frictionid::html

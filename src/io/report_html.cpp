@@ -59,15 +59,9 @@ void result_line(std::string& h, const FitResult& r) {
 
 // Warnings first: they decide whether the numbers below can be used.
 void warnings_section(std::string& h, const FitResult& r) {
-  if (r.warnings.empty()) {
-    line(h,
-         "<p class=\"ok\" id=\"warnings\">No warnings: the fit converged without a sign of "
-         "trouble the tool checks for.</p>");
-    return;
-  }
-  line(h, "<div class=\"warnings\" id=\"warnings\"><h2>Warnings</h2><ul>");
-  for (const auto& w : r.warnings) line(h, "<li>" + escape(w) + "</li>");
-  line(h, "</ul></div>");
+  h += html::warnings_section(
+      r.warnings, {},
+      "No warnings: the fit converged without a sign of trouble the tool checks for.");
 }
 
 // The plot headings in order of first appearance.
@@ -242,11 +236,13 @@ void glossary_section(std::string& h) {
        "(docs/physics.md §2) the forces divided by N and the moments divided by N R depend on "
        "eps alone."},
       {"collapse plot",
-       "Each channel divided by its load scale against eps. If the physics holds, rows at all "
-       "loads fall on one curve, and the fitted line runs through them."},
+       "Each channel divided by its load scale and parity sign against eps. If the physics "
+       "holds, rows at all loads of one slip direction and spin sign fall on one curve, and the "
+       "fitted line of that curve runs through them."},
       {"whitened residual",
-       "(measured − fitted) / σ: about ±1 for noise of the stated size; a "
-       "trend against eps means the model's shape misses."},
+       "(measured − fitted) / σ_i, with σ_i the noise the fit assumed for that row: standard "
+       "deviation about 1 in every group for noise of the stated size; a trend against eps "
+       "means the model's shape misses, a funnel that the noise model does not fit."},
       {"reduced χ²",
        "χ² per degree of freedom: near 1 when the residuals are as large as the noise scale "
        "says; much larger means misfit or an underestimated σ."},

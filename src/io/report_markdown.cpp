@@ -146,8 +146,13 @@ std::string report_markdown(const FitResult& r, const std::vector<std::string>& 
   line("## Warnings");
   line("");
   if (r.warnings.empty()) line("- none");
-  for (const auto& w : r.warnings) line("- " + one_line(w));
-  line("");
+  for (const auto& g : group_warnings(r.warnings)) {
+    line(fmt::format("**{}** ({}): {}", g.heading, g.warnings.size(), g.severity));
+    line("");
+    for (std::size_t i : g.warnings) line("- " + one_line(r.warnings[i]));
+    line("");
+  }
+  if (r.warnings.empty()) line("");
 
   line("## Correlation");
   line("");

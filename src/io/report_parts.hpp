@@ -40,11 +40,22 @@ std::string join_channels(const std::vector<Channel>& cs);
 std::string parameter_note(const ParameterEstimate& p, const char* at_bound,
                            const char* undetermined);
 
+// Warnings grouped by cause, the most severe cause first (the fit did not finish, the model
+// misses a channel, outliers, the noise model, undetermined parameters, closed-form
+// coefficients, other): the cause's heading, a one-line severity, whether a page shows it
+// unfolded, and its warnings' indices in the order given. Causes without warnings are left out.
+struct WarningGroup {
+  std::string heading, severity;
+  bool open = false;
+  std::vector<std::size_t> warnings;
+};
+std::vector<WarningGroup> group_warnings(const std::vector<std::string>& warnings);
+
 // The summary of channel c in r, or nullptr when c was not fitted.
 const ChannelSummary* find_summary(const FitResult& r, Channel c);
 
-// The plot files make_plots gives for r with default options: collapse_<c>.svg, fit_<c>.svg and
-// residuals_<c>.svg for every fitted channel.
+// The plot files make_plots gives for r with default options: collapse_<c>.svg, fit_<c>.svg,
+// residuals_<c>.svg, residuals_fitted_<c>.svg and qq_<c>.svg for every fitted channel.
 std::vector<std::string> default_plot_files(const FitResult& r);
 
 // Rows kept in plots: with more than kMaxPlotRows rows, about one in plot_step(rows), chosen by a
@@ -66,9 +77,10 @@ struct ReportPlot {
   std::string svg;      // an <svg> element (io/svg_plot.hpp), no namespace attribute
 };
 
-// Every plot of the report, in report order (per channel: collapse, fit, residuals; then the
-// --plot-x plots). Channels without predictions are left out. Throws std::invalid_argument when
-// a column named in `o` is not in the dataset or (for plot_x) not numeric.
+// Every plot of the report, in report order (per channel: collapse, fit, residuals against eps
+// and against the fitted value, normal quantiles; then the --plot-x plots). Channels without
+// predictions are left out. Throws std::invalid_argument when a column named in `o` is not in the
+// dataset or (for plot_x) not numeric.
 std::vector<ReportPlot> make_plots(const FitResult& r, const Dataset& d, const ReportOptions& o);
 
 // A plot as an HTML <figure>: the inline SVG and a caption linking its file (no final newline).
@@ -80,6 +92,10 @@ std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& 
 
 // ", contact ellipse:0.6" for a report's title; empty for the circle (plain text).
 std::string contact_words(const std::string& contact);
+
+// Whether any compared fit estimated a channel's noise: then each model is whitened by its own
+// estimate, and only the chi2 under one noise (ModelComparison::chi2_common) compares.
+bool compare_estimates_noise(const ModelComparison& c);
 
 // Per channel every compared model over the measured data (compare_<channel>.svg), and
 // compare.html from them.

@@ -1,6 +1,8 @@
 // Report plots, drawn by io/svg_plot: per channel the collapse plot (the channel divided by its
-// load scale against eps, coloured by group, with the fitted curve), measured and fitted values,
-// and whitened residuals against eps; then the channels against user columns (--plot-x).
+// load scale and parity sign against eps, coloured by group, with the fitted curves), measured
+// and fitted values, the residuals whitened by the sigma the fit used against eps and against
+// the fitted value, and their normal quantile plot; then the channels against user columns
+// (--plot-x).
 #include "io/report_parts.hpp"
 
 #include <algorithm>
@@ -12,6 +14,7 @@
 #include <map>
 #include <optional>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
@@ -32,6 +35,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr std::size_t kMaxColourGroups = 8;
 constexpr const char* kPalette[kMaxColourGroups] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
                                                     "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
+// Per channel: collapse, measured and fitted, residuals against eps and against the fitted
+// value, normal quantiles.
+constexpr std::size_t kPlotsPerChannel = 5;
 constexpr const char* kMeasuredColour = "#1f77b4";
 constexpr const char* kFittedColour = "#d62728";
 
@@ -131,6 +137,10 @@ bool has_column(const Dataset& d, const std::string& name) {
   return std::find(d.extra_names.begin(), d.extra_names.end(), name) != d.extra_names.end();
 }
 
+// The slip angle after the mirror images the collapse divides out (collapse_factor).
+constexpr const char* kAngleWords = "slip angle atan2(sgn(omega) v_y, |v_x|) in degrees";
+constexpr const char* kAngleRule = "colour: slip angle atan2(sgn(omega) v_y, |v_x|) in degrees";
+
 // Rows coloured alike in the collapse plots, and the sentence that says how they were formed.
 struct ColourGroups {
   std::vector<int> of_row;  // -1: not in any group (missing value)
@@ -138,13 +148,38 @@ struct ColourGroups {
   std::string rule;
 };
 
+// The slip angle per row after the mirror images the collapse divides out (collapse_factor),
+// in degrees; the default colouring when the rows have more than one.
+constexpr const char* kAngleColumn = "slip angle [deg]";
+
+std::vector<double> mirrored_angles(const Dataset& d) {
+  std::vector<double> a(d.rows());
+  for (std::size_t i = 0; i < d.rows(); ++i) a[i] = mirrored_slip_angle_deg(d, i);
+  return a;
+}
+
+bool several_values(const std::vector<double>& v) {
+  for (double x : v)
+    if (x != v.front()) return true;
+  return false;
+}
+
 ColourGroups colour_groups(const Dataset& d, const std::vector<double>& eps,
                            const std::string& color_by) {
   ColourGroups g;
   const std::size_t n = d.rows();
   g.of_row.assign(n, 0);
-  const std::string column = color_by.empty() ? "N" : color_by;
-  if (const auto values = numeric_column(d, eps, column)) {
+  std::string column = color_by.empty() ? "N" : color_by;
+  std::optional<std::vector<double>> values;
+  if (color_by.empty() && n > 0) {
+    values = mirrored_angles(d);
+    if (several_values(*values))
+      column = kAngleColumn;
+    else
+      values.reset();
+  }
+  if (!values) values = numeric_column(d, eps, column);
+  if (values) {
     // The distinct values: a short list while there are few (the usual case, and linear in the
     // rows), a full sort only when there are many.
     std::vector<double> distinct;
@@ -167,7 +202,7 @@ ColourGroups colour_groups(const Dataset& d, const std::vector<double>& eps,
     }
     std::sort(distinct.begin(), distinct.end());
     distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
-    if (color_by.empty() && distinct.size() > kMaxColourGroups) {
+    if (color_by.empty() && column == "N" && distinct.size() > kMaxColourGroups) {
       g.names = {"all rows"};
       g.rule = fmt::format("one colour: the load takes more than {} values", kMaxColourGroups);
       return g;
@@ -181,7 +216,7 @@ ColourGroups colour_groups(const Dataset& d, const std::vector<double>& eps,
                                              distinct.begin())
                           : -1;
       }
-      g.rule = fmt::format("colour: {}", column);
+      g.rule = column == kAngleColumn ? std::string(kAngleRule) : fmt::format("colour: {}", column);
       return g;
     }
     // Many values: kMaxColourGroups ranges holding about equally many distinct values.
@@ -202,8 +237,8 @@ ColourGroups colour_groups(const Dataset& d, const std::vector<double>& eps,
                               group, static_cast<std::ptrdiff_t>(kMaxColourGroups) - 1))
                         : -1;
     }
-    g.rule = fmt::format("colour: {} in {} ranges of equally many distinct plotted values", column,
-                         kMaxColourGroups);
+    g.rule = fmt::format("colour: {} in {} ranges of equally many distinct plotted values",
+                         column == kAngleColumn ? kAngleWords : column.c_str(), kMaxColourGroups);
     return g;
   }
   // A text column: one colour per value in sorted order; beyond the palette, "other".
@@ -258,95 +293,140 @@ std::string join_notes(const std::vector<std::string>& notes) {
 
 const char* kEpsLabel = "eps = v/(|omega| R)";
 
-// Slip direction atan2(v_y, v_x) in micro-radians: rows of one direction share a fitted line.
-long long slip_direction_key(const Dataset& d, std::size_t i) {
-  return std::llround(std::atan2(d.v_y[i], d.v_x[i]) * 1e6);
+// More curves than this (fitted lines) in one plot: the fitted values are drawn as dots, since
+// so many lines could not be followed.
+constexpr std::size_t kMaxFittedLines = 48;
+
+// Dots drawn fainter and smaller when a plot holds many, so that their density shows.
+void thin_dots(std::vector<svg::Series>& dots) {
+  std::size_t total = 0;
+  for (const auto& s : dots) total += s.x.size();
+  if (total <= 1500) return;
+  for (auto& s : dots) s.dot_size = 2.6, s.opacity = total > 3000 ? 0.45 : 0.55;
 }
 
-// More slip directions than this among the plotted rows: the fitted values are drawn as dots,
-// since lines per direction would be too many to follow.
-constexpr std::size_t kMaxFittedLinesPerColour = 12;
+// The rows of each colour group, in row order.
+std::vector<std::vector<std::size_t>> group_members(const ColourGroups& groups,
+                                                    const ChannelRows& rows) {
+  std::vector<std::vector<std::size_t>> members(groups.names.size());
+  for (std::size_t i : rows.rows)
+    if (groups.of_row[i] >= 0) members[static_cast<std::size_t>(groups.of_row[i])].push_back(i);
+  return members;
+}
+
+// A curve's name for its line's data-tag: "direction=45 spin=-1 tilt=1" (degrees).
+std::string curve_tag(const SlipCurve& k) {
+  return fmt::format("direction={:.6g} spin={} tilt={}",
+                     static_cast<double>(k.direction) * 1e-6 * (180.0 / 3.14159265358979323846),
+                     k.spin, k.tilt);
+}
+
+// The fitted lines: per colour group, one line per curve (slip_curve; with by_load also per load
+// and radius, for values that are not divided by them), through the model's predictions at the
+// group's rows sorted by eps, each value times factor(row). Empty when there would be more than
+// kMaxFittedLines.
+template <class Factor>
+std::vector<svg::Series> fitted_lines(const FitResult& r, const Dataset& d, Channel c,
+                                      const EpsAxis& axis, const ColourGroups& groups,
+                                      const std::vector<std::vector<std::size_t>>& members,
+                                      bool by_load, Factor factor) {
+  const int ci = static_cast<int>(c);
+  std::vector<svg::Series> lines;
+  for (std::size_t g = 0; g < members.size(); ++g) {
+    std::map<std::tuple<SlipCurve, double, double>, std::vector<std::size_t>> curves;
+    for (std::size_t i : members[g]) {
+      curves[{slip_curve(d, i), by_load ? d.N[i] : 0.0, by_load ? d.R[i] : 0.0}].push_back(i);
+      if (curves.size() + lines.size() > kMaxFittedLines) return {};
+    }
+    for (auto& [key, rows] : curves) {
+      std::stable_sort(rows.begin(), rows.end(),
+                       [&](std::size_t a, std::size_t b) { return axis.x[a] < axis.x[b]; });
+      svg::Series line("", kPalette[g % kMaxColourGroups], svg::Mark::Line);
+      line.outline = true;
+      line.tag = groups.names[g] + "; " + curve_tag(std::get<0>(key));
+      if (by_load)
+        line.tag += fmt::format("; N={:.6g} R={:.6g}", std::get<1>(key), std::get<2>(key));
+      for (std::size_t i : rows) {
+        line.x.push_back(axis.x[i]);
+        line.y.push_back(r.fitted[ci][i] * factor(i));
+      }
+      lines.push_back(std::move(line));
+    }
+  }
+  return lines;
+}
+
+// Measured values as dots coloured by group (value times factor(row)), and the fitted model on
+// top: lines with a white outline, or dark dots when there are too many curves. Returns whether
+// lines were drawn.
+template <class Factor>
+bool measured_and_fitted(svg::Plot& p, const FitResult& r, const Dataset& d, Channel c,
+                         const EpsAxis& axis, const ChannelRows& rows, const ColourGroups& groups,
+                         bool by_load, Factor factor) {
+  const int ci = static_cast<int>(c);
+  const auto members = group_members(groups, rows);
+  std::vector<svg::Series> dots;
+  for (std::size_t g = 0; g < members.size(); ++g) {
+    if (members[g].empty()) continue;
+    svg::Series s(groups.names[g], kPalette[g % kMaxColourGroups], svg::Mark::Dots);
+    s.tag = groups.names[g];
+    for (std::size_t i : members[g]) {
+      s.x.push_back(axis.x[i]);
+      s.y.push_back(d.value[ci][i] * factor(i));
+    }
+    dots.push_back(std::move(s));
+  }
+  thin_dots(dots);
+  auto lines = fitted_lines(r, d, c, axis, groups, members, by_load, factor);
+  const bool drawn = !lines.empty();
+  for (auto& s : dots) p.series.push_back(std::move(s));
+  if (drawn) {
+    for (auto& s : lines) p.series.push_back(std::move(s));
+    return true;
+  }
+  svg::Series fitted("fitted", "#222222", svg::Mark::Dots);
+  fitted.tag = "fitted";
+  fitted.dot_size = 2.2;
+  for (std::size_t i : rows.rows) {
+    fitted.x.push_back(axis.x[i]);
+    fitted.y.push_back(r.fitted[ci][i] * factor(i));
+  }
+  p.series.push_back(std::move(fitted));
+  return false;
+}
 
 ReportPlot collapse_plot(const FitResult& r, const Dataset& d, Channel c, const EpsAxis& axis,
                          const ChannelRows& rows, const ColourGroups& groups) {
-  const int ci = static_cast<int>(c);
   const std::string name = channel_name(c);
-  std::vector<long long> directions;
-  std::vector<long long> key_of(d.rows());  // filled for the plotted rows only
-  for (std::size_t i : rows.rows) {
-    key_of[i] = slip_direction_key(d, i);
-    if (directions.size() <= kMaxFittedLinesPerColour &&
-        std::find(directions.begin(), directions.end(), key_of[i]) == directions.end())
-      directions.push_back(key_of[i]);
-  }
-  const bool lines = directions.size() <= kMaxFittedLinesPerColour;
-  std::sort(directions.begin(), directions.end());
-
   svg::Plot p;
   p.title = fmt::format("{}: collapse, {} / {} against eps", name, name, collapse_divisor(c));
   p.notes = rows.notes;
-  p.notes.push_back(groups.rule + (lines ? "; lines: the fitted model" : ""));
   p.x_label = kEpsLabel;
   p.y_label = fmt::format("{} / {} (parity sign removed)", name, collapse_divisor(c));
   p.log_x = true;
   p.x_range = axis.range;
   p.x_markers = axis.markers;
-  std::vector<std::vector<std::size_t>> members(groups.names.size());
-  for (std::size_t i : rows.rows)
-    if (groups.of_row[i] >= 0) members[static_cast<std::size_t>(groups.of_row[i])].push_back(i);
-  std::vector<svg::Series> fitted, measured;
-  svg::Series fitted_dots{"fitted", "#222222", svg::Mark::Dots, {}, {}};
-  for (std::size_t g = 0; g < members.size(); ++g) {
-    if (members[g].empty()) continue;
-    const char* colour = kPalette[g % kMaxColourGroups];
-    svg::Series dots{groups.names[g], colour, svg::Mark::Dots, {}, {}};
-    for (std::size_t i : members[g]) {
-      dots.x.push_back(axis.x[i]);
-      dots.y.push_back(d.value[ci][i] * collapse_factor(d, c, i));
-    }
-    measured.push_back(std::move(dots));
-    if (!lines) {
-      for (std::size_t i : members[g]) {
-        fitted_dots.x.push_back(axis.x[i]);
-        fitted_dots.y.push_back(r.fitted[ci][i] * collapse_factor(d, c, i));
-      }
-      continue;
-    }
-    // A fitted line joins the model's predictions at this colour's rows of one slip direction,
-    // sorted by eps: the collapsed channel depends on eps alone only at a fixed direction
-    // (docs/physics.md §2), so one line per direction stays a curve at any slip angle.
-    std::vector<std::size_t> order = members[g];
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return axis.x[a] < axis.x[b]; });
-    for (long long key : directions) {
-      svg::Series line{"", colour, svg::Mark::Line, {}, {}};
-      for (std::size_t i : order) {
-        if (key_of[i] != key) continue;
-        line.x.push_back(axis.x[i]);
-        line.y.push_back(r.fitted[ci][i] * collapse_factor(d, c, i));
-      }
-      if (!line.x.empty()) fitted.push_back(std::move(line));
-    }
-  }
-  // Lines under the dots, so the data stay visible where they sit on the curve; fitted dots
-  // (many directions) over them.
-  for (auto& s : fitted) p.series.push_back(std::move(s));
-  for (auto& s : measured) p.series.push_back(std::move(s));
-  if (!lines) p.series.push_back(std::move(fitted_dots));
+  p.y_reference = 0.0;
+  const bool lines = measured_and_fitted(p, r, d, c, axis, rows, groups, false,
+                                         [&](std::size_t i) { return collapse_factor(d, c, i); });
+  p.notes.push_back(groups.rule + (lines ? "; lines: the fitted model" : ""));
 
   ReportPlot out;
   out.file = "collapse_" + name + ".svg";
   out.heading = name;
   out.caption = fmt::format(
       "Collapse plot: measured {0} divided by {1} and by its parity sign (coloured dots), "
-      "against eps; by the model (docs/physics.md §2) rows at every load and one slip direction "
-      "fall "
-      "on one curve of eps. {2} {3}.",
+      "against eps. The parity sign is sgn v_x for T_x, sgn omega for T_y and M_z: the signs the "
+      "model's mirror images y → −y and (v, omega) → (−v, −omega) take (docs/physics.md §2.3), "
+      "which carry every row to v_x ≥ 0, omega ≥ 0. Rows at every load of one slip direction, "
+      "spin sign and tilt sign fall on one curve of eps. {2} {3}.",
       name, collapse_divisor(c),
-      lines ? "The lines join the fitted model's predictions at the same rows, divided the same "
-              "way, one line per colour and slip direction, sorted by eps."
-            : "Dark dots: the fitted model's predictions at the same rows, divided the same way "
-              "(more than 12 slip directions: no lines).",
+      lines ? "The lines, drawn over the dots, join the fitted model's predictions at the same "
+              "rows, divided the same way: one line per colour, slip direction, spin sign and "
+              "tilt sign, sorted by eps."
+            : fmt::format("Dark dots: the fitted model's predictions at the same rows, divided "
+                          "the same way (more than {} curves: no lines).",
+                          kMaxFittedLines),
       groups.rule);
   if (!rows.notes.empty()) out.caption += " (" + join_notes(rows.notes) + ".)";
   out.svg = svg::render(p);
@@ -354,8 +434,7 @@ ReportPlot collapse_plot(const FitResult& r, const Dataset& d, Channel c, const 
 }
 
 ReportPlot fit_plot(const FitResult& r, const Dataset& d, Channel c, const EpsAxis& axis,
-                    const ChannelRows& rows) {
-  const int ci = static_cast<int>(c);
+                    const ChannelRows& rows, const ColourGroups& groups) {
   const std::string name = channel_name(c);
   svg::Plot p;
   p.title = name + ": measured and fitted";
@@ -365,57 +444,184 @@ ReportPlot fit_plot(const FitResult& r, const Dataset& d, Channel c, const EpsAx
   p.log_x = true;
   p.x_range = axis.range;
   p.x_markers = axis.markers;
-  svg::Series measured{"measured", kMeasuredColour, svg::Mark::Dots, {}, {}};
-  svg::Series fitted{"fitted", kFittedColour, svg::Mark::Dots, {}, {}};
-  for (std::size_t i : rows.rows) {
-    measured.x.push_back(axis.x[i]);
-    measured.y.push_back(d.value[ci][i]);
-    fitted.x.push_back(axis.x[i]);
-    fitted.y.push_back(r.fitted[ci][i]);
-  }
-  p.series = {std::move(measured), std::move(fitted)};
+  const bool lines =
+      measured_and_fitted(p, r, d, c, axis, rows, groups, true, [](std::size_t) { return 1.0; });
+  p.notes.push_back(groups.rule + (lines ? "; lines: the fitted model" : ""));
   ReportPlot out{"fit_" + name + ".svg", name, "", svg::render(p)};
-  out.caption =
-      fmt::format("Measured (blue) and fitted (red) {} in {} against eps.", name, channel_unit(c));
+  out.caption = fmt::format(
+      "Measured {0} in {1} against eps (dots, {2}) and the fitted model over them: {3}.", name,
+      channel_unit(c), groups.rule,
+      lines ? "one line per colour, slip direction, spin sign, tilt sign, load and radius, "
+              "sorted by eps"
+            : fmt::format("dark dots at the same rows (more than {} curves: no lines)",
+                          kMaxFittedLines));
   if (!rows.notes.empty()) out.caption += " (" + join_notes(rows.notes) + ".)";
   return out;
 }
 
-ReportPlot residual_plot(const FitResult& r, const Dataset& d, Channel c, const EpsAxis& axis,
-                         const ChannelRows& rows) {
-  const int ci = static_cast<int>(c);
-  const std::string name = channel_name(c);
-  const ChannelSummary* summary = find_summary(r, c);
-  const bool scale_ok = summary && std::isfinite(summary->scale) && summary->scale > 0;
-  const bool use_sigma = d.has_sigma(c) && d.sigma[ci].size() == d.rows();
-  std::string scale_text = "1 (no scale known)";
-  if (use_sigma)
-    scale_text = "sigma";
-  else if (scale_ok)
-    scale_text = fmt::format("scale ({:.4g} {})", summary->scale, channel_unit(c));
+// The standard normal quantile: Acklam's rational approximation and one Halley step on erfc
+// (relative error below 1e-15 in double).
+double normal_quantile(double p) {
+  static constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,
+                                 -2.759285104469687e+02, 1.383577518672690e+02,
+                                 -3.066479806614716e+01, 2.506628277459239e+00};
+  static constexpr double b[] = {-5.447609879822406e+01, 1.615858368580409e+02,
+                                 -1.556989798598866e+02, 6.680131188771972e+01,
+                                 -1.328068155288572e+01};
+  static constexpr double c[] = {-7.784894002430293e-03, -3.223964580411365e-01,
+                                 -2.400758277161838e+00, -2.549732539343734e+00,
+                                 4.374664141464968e+00,  2.938163982698783e+00};
+  static constexpr double e[] = {7.784695709041462e-03, 3.224671290700398e-01,
+                                 2.445134137142996e+00, 3.754408661907416e+00};
+  double x;
+  if (p < 0.02425) {
+    const double q = std::sqrt(-2 * std::log(p));
+    x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+        ((((e[0] * q + e[1]) * q + e[2]) * q + e[3]) * q + 1);
+  } else if (p > 1 - 0.02425) {
+    const double q = std::sqrt(-2 * std::log(1 - p));
+    x = -(((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+        ((((e[0] * q + e[1]) * q + e[2]) * q + e[3]) * q + 1);
+  } else {
+    const double q = p - 0.5, t = q * q;
+    x = (((((a[0] * t + a[1]) * t + a[2]) * t + a[3]) * t + a[4]) * t + a[5]) * q /
+        (((((b[0] * t + b[1]) * t + b[2]) * t + b[3]) * t + b[4]) * t + 1);
+  }
+  const double err = 0.5 * std::erfc(-x / std::sqrt(2.0)) - p;
+  const double u = err * std::sqrt(2 * 3.14159265358979323846) * std::exp(x * x / 2);
+  return x - u / (1 + x * u / 2);
+}
 
+// The whitened residuals of one channel: (measured - fitted) / sigma_i, sigma_i the one the fit
+// divided by (fit_sigma), and the words for what sigma_i is.
+struct Whitened {
+  std::vector<double> z;  // per row; NaN where there is none
+  std::string sigma_words;
+};
+
+Whitened whitened_residuals(const FitResult& r, const Dataset& d, Channel c) {
+  const int ci = static_cast<int>(c);
+  Whitened w;
+  const std::vector<double> sigma = fit_sigma(r, d, c);
+  w.z.assign(d.rows(), kNaN);
+  for (std::size_t i = 0; i < sigma.size(); ++i)
+    if (std::isfinite(sigma[i]) && sigma[i] > 0)
+      w.z[i] = (d.value[ci][i] - r.fitted[ci][i]) / sigma[i];
+  const ChannelSummary* summary = find_summary(r, c);
+  if (d.has_sigma(c))
+    w.sigma_words = "the row's sigma column";
+  else if (summary && summary->noise)
+    w.sigma_words = "the row's sigma under the fitted noise model (" + summary->scale_source + ")";
+  else if (summary)
+    w.sigma_words = fmt::format("the channel's fixed scale {:.4g} {} ({})", summary->scale,
+                                channel_unit(c), summary->scale_source);
+  else
+    w.sigma_words = "1";
+  return w;
+}
+
+const char* kWhitenedLabel = "(measured - fitted) / sigma_i";
+
+// Whitened residuals against x (eps on the log axis, or the fitted value), one colour per group.
+void residual_dots(svg::Plot& p, const std::vector<double>& x, const Whitened& w,
+                   const ChannelRows& rows, const ColourGroups& groups) {
+  const auto members = group_members(groups, rows);
+  std::vector<svg::Series> dots;
+  for (std::size_t g = 0; g < members.size(); ++g) {
+    if (members[g].empty()) continue;
+    svg::Series s(groups.names[g], kPalette[g % kMaxColourGroups], svg::Mark::Dots);
+    s.tag = groups.names[g];
+    for (std::size_t i : members[g]) {
+      s.x.push_back(x[i]);
+      s.y.push_back(w.z[i]);
+    }
+    dots.push_back(std::move(s));
+  }
+  thin_dots(dots);
+  for (auto& s : dots) p.series.push_back(std::move(s));
+}
+
+std::string residual_caption(const std::string& name, const Whitened& w) {
+  return fmt::format(
+      "Residuals of {} divided by {}: when the model and the noise model fit, they scatter "
+      "without a trend or a funnel, with a standard deviation near 1 in every colour, about 95 % "
+      "within ±2.",
+      name, w.sigma_words);
+}
+
+ReportPlot residual_plot(const Whitened& w, Channel c, const EpsAxis& axis, const ChannelRows& rows,
+                         const ColourGroups& groups) {
+  const std::string name = channel_name(c);
   svg::Plot p;
-  p.title = name + ": whitened residuals";
+  p.title = name + ": whitened residuals against eps";
   p.notes = rows.notes;
+  p.notes.push_back(groups.rule);
   p.x_label = kEpsLabel;
-  p.y_label = "(measured - fitted) / " + scale_text;
+  p.y_label = kWhitenedLabel;
   p.log_x = true;
   p.x_range = axis.range;
   p.x_markers = axis.markers;
   p.y_reference = 0.0;
-  svg::Series res{"residual", kMeasuredColour, svg::Mark::Dots, {}, {}};
-  for (std::size_t i : rows.rows) {
-    double s = scale_ok ? summary->scale : 1.0;
-    if (use_sigma && std::isfinite(d.sigma[ci][i]) && d.sigma[ci][i] > 0) s = d.sigma[ci][i];
-    res.x.push_back(axis.x[i]);
-    res.y.push_back((d.value[ci][i] - r.fitted[ci][i]) / s);
-  }
-  p.series = {std::move(res)};
+  residual_dots(p, axis.x, w, rows, groups);
   ReportPlot out{"residuals_" + name + ".svg", name, "", svg::render(p)};
+  out.caption = residual_caption(name, w) + " Colours: " + groups.rule + ".";
+  if (!rows.notes.empty()) out.caption += " (" + join_notes(rows.notes) + ".)";
+  return out;
+}
+
+ReportPlot residual_fitted_plot(const FitResult& r, const Whitened& w, Channel c,
+                                const ChannelRows& rows, const ColourGroups& groups) {
+  const std::string name = channel_name(c);
+  svg::Plot p;
+  p.title = name + ": whitened residuals against the fitted value";
+  p.notes = rows.notes;
+  p.notes.push_back(groups.rule);
+  p.x_label = fmt::format("fitted {} [{}]", name, channel_unit(c));
+  p.y_label = kWhitenedLabel;
+  p.y_reference = 0.0;
+  residual_dots(p, r.fitted[static_cast<int>(c)], w, rows, groups);
+  ReportPlot out{"residuals_fitted_" + name + ".svg", name, "", svg::render(p)};
+  out.caption = residual_caption(name, w) +
+                " Against the fitted value, a funnel means the noise model's sigma does not "
+                "follow the data's. Colours: " +
+                groups.rule + ".";
+  if (!rows.notes.empty()) out.caption += " (" + join_notes(rows.notes) + ".)";
+  return out;
+}
+
+ReportPlot qq_plot(const Whitened& w, Channel c, const ChannelRows& rows) {
+  const std::string name = channel_name(c);
+  std::vector<double> z;
+  for (std::size_t i : rows.rows)
+    if (std::isfinite(w.z[i])) z.push_back(w.z[i]);
+  std::sort(z.begin(), z.end());
+  svg::Plot p;
+  p.title = name + ": normal quantile plot of the whitened residuals";
+  p.notes = rows.notes;
+  p.x_label = "standard normal quantile";
+  p.y_label = "sorted " + std::string(kWhitenedLabel);
+  svg::Series dots("whitened residuals", kMeasuredColour, svg::Mark::Dots);
+  dots.tag = "quantiles";
+  const double n = static_cast<double>(z.size());
+  for (std::size_t k = 0; k < z.size(); ++k) {
+    dots.x.push_back(normal_quantile((static_cast<double>(k) + 0.5) / n));
+    dots.y.push_back(z[k]);
+  }
+  svg::Series line("y = x", kFittedColour, svg::Mark::Line);
+  line.dash = "6 4";
+  if (!z.empty()) {
+    const double q = std::max(std::fabs(dots.x.front()), 1.0);
+    line.x = {-q, q};
+    line.y = {-q, q};
+  }
+  p.series.push_back(std::move(dots));
+  p.series.push_back(std::move(line));
+  ReportPlot out{"qq_" + name + ".svg", name, "", svg::render(p)};
   out.caption = fmt::format(
-      "Residuals of {} divided by {}: without a trend and mostly within ±2 when the model fits "
-      "and the noise scale is right.",
-      name, scale_text);
+      "The whitened residuals of {} ({}) sorted, against the quantiles of the standard normal "
+      "at (k − 0.5)/n: on the dashed line y = x when they are normal with standard deviation 1. "
+      "A steeper line is a noise scale too small, S-shaped ends heavy tails or outliers.",
+      name, w.sigma_words);
   if (!rows.notes.empty()) out.caption += " (" + join_notes(rows.notes) + ".)";
   return out;
 }
@@ -429,27 +635,44 @@ std::string file_part(const std::string& s) {
 }
 
 ReportPlot column_plot(const FitResult& r, const Dataset& d, Channel c, const std::string& column,
-                       const std::vector<double>& x, const ChannelRows& rows) {
+                       const std::vector<double>& x, const ChannelRows& rows,
+                       const ColourGroups& groups) {
   const int ci = static_cast<int>(c);
   const std::string name = channel_name(c);
   svg::Plot p;
   p.title = fmt::format("{}: measured and fitted against {}", name, column);
   p.notes = rows.notes;
+  p.notes.push_back(groups.rule);
   p.x_label = column;
   p.y_label = fmt::format("{} [{}]", name, channel_unit(c));
-  svg::Series measured{"measured", kMeasuredColour, svg::Mark::Dots, {}, {}};
-  svg::Series fitted{"fitted", kFittedColour, svg::Mark::Dots, {}, {}};
+  const auto members = group_members(groups, rows);
+  std::vector<svg::Series> dots;
+  for (std::size_t g = 0; g < members.size(); ++g) {
+    if (members[g].empty()) continue;
+    svg::Series s(groups.names[g], kPalette[g % kMaxColourGroups], svg::Mark::Dots);
+    s.tag = groups.names[g];
+    for (std::size_t i : members[g]) {
+      s.x.push_back(x[i]);
+      s.y.push_back(d.value[ci][i]);
+    }
+    dots.push_back(std::move(s));
+  }
+  thin_dots(dots);
+  for (auto& s : dots) p.series.push_back(std::move(s));
+  svg::Series fitted("fitted", "#222222", svg::Mark::Dots);
+  fitted.tag = "fitted";
+  fitted.dot_size = 2.0;
   for (std::size_t i : rows.rows) {
-    measured.x.push_back(x[i]);
-    measured.y.push_back(d.value[ci][i]);
     fitted.x.push_back(x[i]);
     fitted.y.push_back(r.fitted[ci][i]);
   }
-  p.series = {std::move(measured), std::move(fitted)};
+  p.series.push_back(std::move(fitted));
   ReportPlot out{fmt::format("x_{}_{}.svg", file_part(column), name),
                  fmt::format("{} against {}", name, column), "", svg::render(p)};
-  out.caption =
-      fmt::format("Measured (blue) and fitted (red) {} against the column {}.", name, column);
+  out.caption = fmt::format(
+      "Measured {} (coloured dots, {}) and fitted (small dark dots, drawn over them) against the "
+      "column {}.",
+      name, groups.rule, column);
   if (!rows.notes.empty()) out.caption += " (" + join_notes(rows.notes) + ".)";
   return out;
 }
@@ -498,7 +721,7 @@ const ChannelSummary* find_summary(const FitResult& r, Channel c) {
 std::vector<std::string> default_plot_files(const FitResult& r) {
   std::vector<std::string> files;
   for (Channel c : r.channels)
-    for (const char* kind : {"collapse", "fit", "residuals"})
+    for (const char* kind : {"collapse", "fit", "residuals", "residuals_fitted", "qq"})
       files.push_back(fmt::format("{}_{}.svg", kind, channel_name(c)));
   return files;
 }
@@ -536,22 +759,26 @@ std::vector<ReportPlot> make_plots(const FitResult& r, const Dataset& d, const R
   }
   // Each channel's plots are drawn by one task into its own slots; the order of the list (per
   // channel collapse, fit, residuals; then the --plot-x plots) does not depend on the threads.
-  const std::size_t per_channel = 3 + o.plot_x.size();
+  const std::size_t per_channel = kPlotsPerChannel + o.plot_x.size();
   std::vector<ReportPlot> drawn(shown.size() * per_channel);
   for_each_task(shown.size(), resolve_thread_count(o.threads), [&](std::size_t j) {
     const auto& [c, rows] = shown[j];
     ReportPlot* out = &drawn[j * per_channel];
+    const Whitened w = whitened_residuals(r, d, c);
     out[0] = collapse_plot(r, d, c, axis, rows, groups);
-    out[1] = fit_plot(r, d, c, axis, rows);
-    out[2] = residual_plot(r, d, c, axis, rows);
+    out[1] = fit_plot(r, d, c, axis, rows, groups);
+    out[2] = residual_plot(w, c, axis, rows, groups);
+    out[3] = residual_fitted_plot(r, w, c, rows, groups);
+    out[4] = qq_plot(w, c, rows);
     for (std::size_t k = 0; k < o.plot_x.size(); ++k)
-      out[3 + k] = column_plot(r, d, c, o.plot_x[k], x_columns[k], rows);
+      out[kPlotsPerChannel + k] = column_plot(r, d, c, o.plot_x[k], x_columns[k], rows, groups);
   });
   for (std::size_t j = 0; j < shown.size(); ++j)
-    for (std::size_t m = 0; m < 3; ++m) plots.push_back(std::move(drawn[j * per_channel + m]));
+    for (std::size_t m = 0; m < kPlotsPerChannel; ++m)
+      plots.push_back(std::move(drawn[j * per_channel + m]));
   for (std::size_t k = 0; k < o.plot_x.size(); ++k)
     for (std::size_t j = 0; j < shown.size(); ++j)
-      plots.push_back(std::move(drawn[j * per_channel + 3 + k]));
+      plots.push_back(std::move(drawn[j * per_channel + kPlotsPerChannel + k]));
   return plots;
 }
 

@@ -170,6 +170,11 @@ void append_markers(std::string& o, const Plot& p, const Axis& ax, const Axis& a
   }
 }
 
+// The series' data-tag attribute with its leading space, or nothing.
+std::string tag_attribute(const Series& s) {
+  return s.tag.empty() ? std::string() : " data-tag=\"" + escape(s.tag) + "\"";
+}
+
 // Dots are zero-length round-capped subpaths: one path element per series, and a dot that lands
 // in the same half-pixel cell as an earlier one of its series is left out (it would be drawn
 // over it).
@@ -177,9 +182,9 @@ void append_dots(std::string& o, const Plot& p, const Series& s, const Axis& ax,
   const double W = p.width, H = p.height;
   const std::size_t n = std::min(s.x.size(), s.y.size());
   o += fmt::format(
-      "<path fill=\"none\" stroke=\"{}\" stroke-width=\"3.4\" stroke-linecap=\"round\" "
-      "stroke-opacity=\"0.75\" d=\"",
-      escape(s.color));
+      "<path fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" "
+      "stroke-opacity=\"{}\"{} d=\"",
+      escape(s.color), px(s.dot_size), fmt::format("{:.2f}", s.opacity), tag_attribute(s));
   // One bit per half-pixel cell of the whole image.
   const auto cols = static_cast<std::size_t>(2 * W) + 1, rows = static_cast<std::size_t>(2 * H) + 1;
   std::vector<bool> taken(cols * rows, false);
@@ -203,23 +208,30 @@ void append_dots(std::string& o, const Plot& p, const Series& s, const Axis& ax,
 // A line through the points inside the axes, lifted where a point is outside.
 void append_line(std::string& o, const Series& s, const Axis& ax, const Axis& ay) {
   const std::size_t n = std::min(s.x.size(), s.y.size());
-  o += fmt::format(
-      "<path fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\" stroke-linejoin=\"round\" "
-      "d=\"",
-      escape(s.color));
+  std::string d;
   bool pen_down = false;
   for (std::size_t i = 0; i < n; ++i) {
     if (!ax.inside(s.x[i]) || !ay.inside(s.y[i])) {
       pen_down = false;
       continue;
     }
-    o += pen_down ? 'L' : 'M';
-    append_px(o, ax.map(s.x[i]));
-    o += ' ';
-    append_px(o, ay.map(s.y[i]));
+    d += pen_down ? 'L' : 'M';
+    append_px(d, ax.map(s.x[i]));
+    d += ' ';
+    append_px(d, ay.map(s.y[i]));
     pen_down = true;
   }
-  o += "\"/>\n";
+  if (s.outline)
+    o += "<path fill=\"none\" stroke=\"#ffffff\" stroke-width=\"4.2\" stroke-linejoin=\"round\" "
+         "stroke-opacity=\"0.9\" d=\"" +
+         d + "\"/>\n";
+  o += fmt::format(
+      "<path fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\" stroke-linejoin=\"round\"{}{} "
+      "d=\"",
+      escape(s.color),
+      s.dash.empty() ? std::string() : " stroke-dasharray=\"" + escape(s.dash) + "\"",
+      tag_attribute(s));
+  o += d + "\"/>\n";
 }
 
 // The legend below the x label.
@@ -233,8 +245,11 @@ void append_legend(std::string& o, const Plot& p, const std::vector<LegendItem>&
                        px(y - 4), escape(item.series->color));
     else
       o += fmt::format(
-          "<line x1=\"{0}\" y1=\"{2}\" x2=\"{1}\" y2=\"{2}\" stroke=\"{3}\" stroke-width=\"2\"/>\n",
-          px(x), px(x + 20), px(y - 4), escape(item.series->color));
+          "<line x1=\"{0}\" y1=\"{2}\" x2=\"{1}\" y2=\"{2}\" stroke=\"{3}\" "
+          "stroke-width=\"2\"{4}/>\n",
+          px(x), px(x + 20), px(y - 4), escape(item.series->color),
+          item.series->dash.empty() ? std::string()
+                                    : " stroke-dasharray=\"" + escape(item.series->dash) + "\"");
     o += fmt::format("<text x=\"{}\" y=\"{}\">{}</text>\n", px(x + 26), px(y),
                      escape(item.series->label));
   }

@@ -13,10 +13,26 @@ namespace frictionid::svg {
 enum class Mark { Dots, Line };
 
 struct Series {
+  Series() = default;
+  Series(std::string label_, std::string color_, Mark mark_, std::vector<double> x_ = {},
+         std::vector<double> y_ = {})
+      : label(std::move(label_)),
+        color(std::move(color_)),
+        mark(mark_),
+        x(std::move(x_)),
+        y(std::move(y_)) {}
+
   std::string label;  // legend text; empty keeps the series out of the legend
   std::string color;  // CSS colour, e.g. "#1f77b4"
   Mark mark = Mark::Dots;
   std::vector<double> x, y;  // a pair that is not finite (or <= 0 on a log axis) is skipped
+  // Written as the data-tag attribute of the series' path (when not empty): which group or
+  // curve it draws, for a reader of the SVG.
+  std::string tag;
+  bool outline = false;   // a line drawn over a white halo, so that it shows over dots
+  std::string dash;       // a line's stroke-dasharray, e.g. "6 3"; empty: solid
+  double dot_size = 3.4;  // a dot's diameter in pixels
+  double opacity = 0.75;  // of the dots
 };
 
 // A dashed vertical line at x with a label at its top, e.g. the edge where eps = 0 rows sit.

@@ -12,6 +12,7 @@ Checks:
   - every label link names a report file that exists;
   - no http(s) URL anywhere in the page or its DOM;
   - the screenshot is not blank;
+  - at a 390 px window the page is no wider than the window (factorial_in_browser.py's check);
   - sorting works: opened as summary.html#sort=-load the rows are in descending load, and as
     #sort=f in ascending f with the failed run (no f) last.
 Exit 0: passed; 1: failed; 77: skipped (Chromium not installed; ctest's SKIP_RETURN_CODE).
@@ -28,6 +29,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_in_browser import CHROMIUM_FLAGS, WINDOW, chromium, png_grey_levels, run  # noqa: E402
+from factorial_in_browser import narrow_widths, width_failures  # noqa: E402
 
 LOADS = (1000, 2000, 3000)
 
@@ -184,6 +186,9 @@ def main():
             for scheme in ("http://", "https://"):
                 if scheme in text:
                     failures.append("the %s holds a %s URL" % (where, scheme))
+
+        # At a 390 px window the page is no wider than the window (the table scrolls in its box).
+        failures += width_failures("summary.html", narrow_widths(browser, tmp, page))
 
         if not os.path.exists(shot):
             failures.append("no screenshot")

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include <frictionid/fit_result.hpp>
 #include <frictionid/fitter.hpp>
@@ -37,6 +38,13 @@ TEST(ModelComparison, ClosedFormsLeaveASystematicResidualOnExactDataAndAicPrefer
     EXPECT_LT(std::fabs(c.residual_autocorrelation[2].at(ch)), 0.3) << "exact " << ch;
   }
   EXPECT_GT(c.residual_autocorrelation[1].at("M_z"), 0.5) << "corrected M_z";
+  // Under one noise (exact's, the model AIC prefers) the closed forms' chi2 is far above the
+  // exact fit's, whatever their own chi2 (each near the number of cells) says.
+  EXPECT_EQ(c.common_noise_fit, 2u);
+  ASSERT_EQ(c.chi2_common.size(), 3u);
+  EXPECT_NEAR(c.chi2_common[2], c.fits[2].chi2, 1e-3 * c.fits[2].chi2);
+  EXPECT_GT(c.chi2_common[0], 2 * c.chi2_common[2]);
+  EXPECT_GT(c.chi2_common[1], 2 * c.chi2_common[2]);
   // The coefficients implied by the exact fit are those of its (Hertz) pressure at its kappa.
   const double kappa = c.fits[2].parameters[1].value;
   const double r = 15 * M_PI * (1 + kappa) / (32 * kappa);
@@ -143,6 +151,64 @@ TEST(ModelComparison, AlignedSlipWithoutTorqueLeavesKappaUndetermined) {
   s.params[kH].initial = 0.0;
   const FitResult r = Fitter(s).fit(d);
   EXPECT_FALSE(r.parameters[1].std_error.has_value());
+}
+
+// Measured loads: every row its own N (1e-9 apart), so no two rows share a curve of one load.
+// The residual runs are then taken along coarser curves, and the closed form's shape misfit
+// still shows as a lag-1 correlation near 1.
+TEST(ModelComparison, ResidualRunsSurviveALoadThatDiffersOnEveryRow) {
+  const Law law = Law::hertz();
+  const auto truth = default_parameters(law, 0.9, 1.15, 0.08);
+  SyntheticDesign design;
+  design.rows = 300;
+  Dataset d =
+      generate_dataset(ModelKind::Exact, law, truth, design, NoiseSpec{0.002, 0.0, false}, 11);
+  for (std::size_t i = 0; i < d.rows(); ++i) d.N[i] *= 1 + 1e-9 * static_cast<double>(i);
+  const ModelComparison c =
+      compare_models(d, {FitSettings::defaults(ModelKind::Seed, law, "law"),
+                         FitSettings::defaults(ModelKind::Exact, law, "law")});
+  EXPECT_GT(c.residual_autocorrelation[0].at("T_x"), 0.5);
+  EXPECT_LT(std::fabs(c.residual_autocorrelation[1].at("T_x")), 0.3);
+}
+
+// fit_sigma gives the sigma per row that the fit divided by: with an estimated noise model its
+// chi2 is the fit's own.
+TEST(ModelComparison, FitSigmaIsTheSigmaTheFitDividedBy) {
+  const Law law = Law::hertz();
+  const auto truth = default_parameters(law, 0.9, 1.15, 0.08);
+  SyntheticDesign design;
+  design.rows = 300;
+  const Dataset d =
+      generate_dataset(ModelKind::Exact, law, truth, design, NoiseSpec{0.01, 0.0, false}, 5);
+  const FitResult r = Fitter(FitSettings::defaults(ModelKind::Exact, law, "law")).fit(d);
+  double chi2 = 0.0;
+  for (const auto& cs : r.channel_summaries) {
+    ASSERT_TRUE(cs.noise.has_value()) << channel_name(cs.channel);
+    const int ci = static_cast<int>(cs.channel);
+    const std::vector<double> sigma = fit_sigma(r, d, cs.channel);
+    ASSERT_EQ(sigma.size(), d.rows());
+    for (std::size_t i = 0; i < d.rows(); ++i)
+      if (d.present[ci][i]) chi2 += std::pow((d.value[ci][i] - r.fitted[ci][i]) / sigma[i], 2);
+  }
+  // The fit's sigma came from the fitted values one reweighting step earlier.
+  EXPECT_NEAR(chi2, r.chi2, 1e-3 * r.chi2);
+}
+
+// Rows of one curve share a slip direction, spin sign and tilt sign; the mirrored slip angle
+// takes both spin signs of a lateral slip to +-90 degrees and slipping backwards to v_x >= 0.
+TEST(ModelComparison, SlipCurvesAndMirroredAngles) {
+  Dataset d;
+  d.v_x = {1.0, 2.0, 1.0, 0.0, 0.0, -1.0};
+  d.v_y = {0.0, 0.0, 0.0, 1.0, 1.0, 1.0};
+  d.omega = {2.0, 5.0, -2.0, 2.0, -2.0, -2.0};
+  EXPECT_EQ(slip_curve(d, 0), slip_curve(d, 1));
+  EXPECT_FALSE(slip_curve(d, 0) == slip_curve(d, 2));
+  EXPECT_FALSE(slip_curve(d, 3) == slip_curve(d, 4));
+  EXPECT_EQ(mirrored_slip_angle_deg(d, 0), 0.0);
+  EXPECT_EQ(mirrored_slip_angle_deg(d, 2), 0.0);
+  EXPECT_EQ(mirrored_slip_angle_deg(d, 3), 90.0);
+  EXPECT_EQ(mirrored_slip_angle_deg(d, 4), -90.0);
+  EXPECT_EQ(mirrored_slip_angle_deg(d, 5), -45.0);
 }
 
 }  // namespace

@@ -94,5 +94,38 @@ TEST(CompareHtml, IsSelfContainedAndByteStable) {
   EXPECT_EQ(html.find(" src="), std::string::npos);
 }
 
+// Each model's own noise estimate puts its own chi2 near the number of cells: here the worse
+// model (seed, by AIC) has the smaller own chi2. The page must not rank by it: it shows the chi2
+// under one noise (exact's) and says whose, and claims no common whitening.
+TEST(CompareHtml, ShowsTheChi2UnderOneNoiseNotEachModelsOwn) {
+  const Dataset d = make_dataset();
+  ModelComparison c = make_comparison(d);
+  c.fits[0].chi2 = 9.0;   // seed, the worse model
+  c.fits[1].chi2 = 10.0;  // exact
+  c.chi2_common = {431.0, 10.0};
+  c.common_noise_fit = 1;
+  for (auto& f : c.fits)
+    f.channel_summaries[0].noise =
+        NoiseEstimate{NoiseModelKind::Constant, "constant", 0.5, 0.0, 0.0, ""};
+  const std::string html = compare_html(c, d);
+  EXPECT_EQ(html.find("whitening for every"), std::string::npos);
+  EXPECT_NE(html.find("<th>χ², one noise</th>"), std::string::npos);
+  EXPECT_NE(html.find("noise estimated for <strong>exact</strong>"), std::string::npos);
+  const auto table = html.substr(html.find("id=\"quality\""));
+  EXPECT_NE(table.find("data-value=\"431\""), std::string::npos);
+  EXPECT_EQ(table.substr(0, table.find("</table>")).find("data-value=\"9\""), std::string::npos)
+      << "the seed's own chi2 is in the table";
+}
+
+// Without any noise estimate (sigma columns or fixed scales) every model is whitened alike, and
+// the page says so.
+TEST(CompareHtml, SaysTheWhiteningIsCommonWhenNoModelEstimatesNoise) {
+  const Dataset d = make_dataset();
+  const std::string html = compare_html(make_comparison(d), d);
+  EXPECT_NE(html.find("the same whitening for every model (sigma columns or fixed scales)"),
+            std::string::npos);
+  EXPECT_EQ(html.find("own noise estimate"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace frictionid

@@ -131,6 +131,32 @@ TEST(ReportHtml, WarningsComeFirstAndAreEscaped) {
   EXPECT_LT(warning, html.find("id=\"parameters\""));
 }
 
+// Warnings are grouped by cause, the most severe first and unfolded; a misfit of 95 % of the
+// rows beyond 6 sigma is filed as a misfit, not as outliers; each cause says how severe it is.
+TEST(ReportHtml, WarningsAreGroupedByCauseTheMostSevereFirst) {
+  const Dataset d = make_dataset();
+  FitResult r = make_result(d);
+  r.warnings = {
+      "m = 5.4 differs from the value 7.6 that the hertz pressure implies at this fit's kappa = "
+      "1.1 by 24 standard errors",
+      "1 row of T_x lie beyond 6 sigma of the fit; the worst, at line 7, looks like an outlier",
+      "38 of 40 rows of T_y (95 %) lie beyond 6 sigma of the fit, far more than outliers",
+      "2 rows of M_z lie beyond 6 sigma of the fit; the worst, at line 9, looks like an outlier"};
+  const std::string html = report_html(r, d);
+  const auto misfit = html.find(
+      "<details class=\"warning-cause\" open><summary><strong>The "
+      "model misses a channel</strong> (1): severe");
+  const auto outliers = html.find("<strong>Outliers</strong> (2): moderate");
+  const auto closed = html.find("<strong>Closed-form coefficients</strong> (1): information");
+  ASSERT_NE(misfit, std::string::npos);
+  ASSERT_NE(outliers, std::string::npos);
+  ASSERT_NE(closed, std::string::npos);
+  EXPECT_LT(misfit, outliers);
+  EXPECT_LT(outliers, closed);
+  EXPECT_LT(misfit, html.find("far more than outliers"));
+  EXPECT_LT(html.find("far more than outliers"), outliers);
+}
+
 TEST(ReportHtml, EveryChannelHasACollapsePlotColouredByLoad) {
   const Dataset d = make_dataset();
   const std::string html = report_html(make_result(d), d);

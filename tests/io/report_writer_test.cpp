@@ -436,7 +436,7 @@ TEST(WriteReport, WritesOnlyReportFilesIntoAFreshNestedDir) {
 
   std::vector<std::string> expected = {"report.json", "report.md", "report.html"};
   for (const char* c : {"T_x", "M_z"})
-    for (const char* kind : {"collapse_", "fit_", "residuals_"})
+    for (const char* kind : {"collapse_", "fit_", "residuals_", "residuals_fitted_", "qq_"})
       expected.push_back(kind + std::string(c) + ".svg");
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(names_in(dir), expected);
