@@ -77,6 +77,7 @@ void write_run_report(const BatchContext& c, const BatchRun& run, const FitResul
   if (c.options.per_run_reports == "full") {
     ReportOptions options;  // as many threads as each run fits on
     options.threads = c.fit_threads;
+    options.stop = interrupt_check();
     options.provenance = run_provenance(c.options, run);
     options.contact = contact_label(run.options.contact);
     write_report(dir.string(), r, data, options);
@@ -391,7 +392,7 @@ int run_batch(const BatchRequest& o) {
   if (o.fit.report.empty()) throw InputError("batch needs --report DIR");
   const std::atomic<bool>* interrupted = install_interrupt_handler();
   const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait,
-                                 say_waiting_for(o.fit.report));
+                                 say_waiting_for(o.fit.report), interrupt_check());
   std::error_code ec;
   if (fs::exists(o.fit.report, ec) && !fs::is_directory(o.fit.report, ec))
     throw InputError(o.fit.report, 0, 0, "--report: exists and is not a directory");

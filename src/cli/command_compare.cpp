@@ -60,7 +60,7 @@ int run_compare(const app::CompareRequest& o) {
   const ThreadBudgetScope budget_scope(&budget);
   // Held for the whole run, so that two runs into one directory cannot interleave.
   const ReportDirectoryLock lock(o.fit.report, /*wait=*/!o.fit.no_wait,
-                                 say_waiting_for(o.fit.report));
+                                 say_waiting_for(o.fit.report), interrupt_check());
   check_report_directory_replaceable(o.fit.report);
   const LoadedDataset loaded = app::load_fit_data(o.fit, o.fit.data);
   const Dataset& data = loaded.data;
@@ -89,7 +89,8 @@ int run_compare(const app::CompareRequest& o) {
   if (!on_circle_only) provenance.options["contacts"] = o.contacts;
   const std::vector<std::string> fit_contacts =
       on_circle_only ? std::vector<std::string>{} : contacts;
-  const auto files = write_compare_report(o.fit.report, c, data, provenance, fit_contacts);
+  const auto files =
+      write_compare_report(o.fit.report, c, data, provenance, fit_contacts, interrupt_check());
   const ModelComparison named = compare_named_variants(c, fit_contacts);
   // Model names are 10 wide, as they always were; a longer MODEL@SPOT widens the column.
   int width = 10;

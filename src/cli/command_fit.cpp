@@ -35,7 +35,8 @@ int run_fit(const app::FitRequest& o) {
   ThreadBudget budget(o.threads);
   const ThreadBudgetScope budget_scope(&budget);
   // Held for the whole run, so that two fits into one directory cannot interleave.
-  const ReportDirectoryLock lock(o.report, /*wait=*/!o.no_wait, say_waiting_for(o.report));
+  const ReportDirectoryLock lock(o.report, /*wait=*/!o.no_wait, say_waiting_for(o.report),
+                                 interrupt_check());
   check_report_directory_replaceable(o.report);
   const auto t_read = std::chrono::steady_clock::now();
   const LoadedDataset loaded = app::load_fit_data(o, o.data);
@@ -47,6 +48,7 @@ int run_fit(const app::FitRequest& o) {
   report_options.plot_x = o.plot_x;
   report_options.color_by = o.color_by;
   report_options.threads = o.threads;
+  report_options.stop = interrupt_check();
   // Hashed while the fit starts (its global stage runs on one thread); waited for before the
   // report. Any way out of this function waits for it too (the future's destructor).
   std::future<Provenance> provenance = app::report_provenance_async(o, {o.data});

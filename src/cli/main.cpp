@@ -19,7 +19,7 @@
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
 #include "io/huge_pages.hpp"
-#include "io/interruption.hpp"
+#include "io/stop_check.hpp"
 #include "io/text.hpp"
 
 namespace {

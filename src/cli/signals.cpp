@@ -5,26 +5,31 @@
 #include <csignal>
 #include <cstdio>
 
-#include "io/interruption.hpp"
 #include "io/text.hpp"
 
 namespace frictionid::cli {
 
 namespace {
 
-std::atomic<bool>* g_interrupted = nullptr;
+// Set from the signal handler: lock-free, so that is allowed.
+std::atomic<bool> g_interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+
 extern "C" void on_interrupt(int) {
-  g_interrupted->store(true);
+  g_interrupted.store(true);
 }
 
 }  // namespace
 
+std::function<bool()> interrupt_check() {
+  return [] { return g_interrupted.load(); };
+}
+
 const std::atomic<bool>* install_interrupt_handler() {
-  g_interrupted = &interrupt_flag();
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
   std::signal(SIGHUP, on_interrupt);
-  return g_interrupted;
+  return &g_interrupted;
 }
 
 bool show_progress(bool asked) {

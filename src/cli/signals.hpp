@@ -8,9 +8,12 @@
 
 namespace frictionid::cli {
 
-// SIGINT, SIGTERM and SIGHUP set the returned flag (io/interruption.hpp): fits stop at their next
-// evaluation, and the report stage keeps the earlier report.
+// SIGINT, SIGTERM and SIGHUP set the returned flag: fits stop at their next evaluation, and the
+// report stage keeps the earlier report.
 const std::atomic<bool>* install_interrupt_handler();
+
+// The report stage's stop check (io/stop_check.hpp): whether that flag is set.
+std::function<bool()> interrupt_check();
 
 // Whether runs show a progress line: asked for, or stderr is a terminal.
 bool show_progress(bool asked);

@@ -200,93 +200,133 @@ struct JetPasses {
   }
 };
 
+// The local stage's passes over the rows at Ceres' current point, run before Ceres asks for them
+// (an EvaluationCallback, as in the joint stage); the cost function below only hands them over.
+class LocalEvaluations : public ceres::EvaluationCallback {
+ public:
+  // The N + 1 residuals [w; rho] and, when asked and prepared, the Jacobian [A; 0]. False when
+  // the pass failed (a non-finite model or derivative) or nothing was prepared.
+  virtual bool fill(double* residuals, double* jacobian) const = 0;
+};
+
 // The whole problem as one residual block of N + 1 residuals (see the top of this file).
 //
-// Ceres evaluates the cost alone at each trial point and, when it accepts the step, asks for the
-// Jacobian at that same point. Near a minimum nearly every step is accepted, so the trial cost
-// comes from the autodiff pass, whose normal equations are kept for the request that follows:
-// one pass per accepted step instead of two. After a rejected step (no request followed) the
-// next trial costs a plain-double pass again, which is half as dear. Both passes compute the
-// residuals with the same operations, so the cost Ceres sees does not depend on which ran.
+// Ceres evaluates the cost alone at each trial point (a new evaluation point) and, when it
+// accepts the step, asks for the Jacobian at that same point (not a new one). Near a minimum
+// nearly every step is accepted, so the trial cost comes from the autodiff pass, whose normal
+// equations are kept for the request that follows: one pass per accepted step instead of two.
+// After a rejected step (no request followed) the next trial costs a plain-double pass again,
+// which is half as dear. Both passes compute the residuals with the same operations, so the cost
+// Ceres sees does not depend on which ran.
 template <int N>
-class NormalEquationsCost final : public ceres::CostFunction {
+class NormalEquationsEvaluations final : public LocalEvaluations {
  public:
-  NormalEquationsCost(const LocalProblem& p, const ParamVector& base) : p_(p), base_(base) {
-    set_num_residuals(N + 1);
-    mutable_parameter_block_sizes()->push_back(N);
-  }
+  // z: the free parameters, the memory Ceres updates before each PrepareForEvaluation.
+  NormalEquationsEvaluations(const LocalProblem& p, const ParamVector& base, const double* z)
+      : p_(p), base_(base), z_(z) {}
 
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const double* z = parameters[0];
-    const ParamVector x = JetPasses<N>::with_free(p_, base_, z);
-    const bool wants_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
-    if (!wants_jacobian) {
+  void PrepareForEvaluation(bool evaluate_jacobians, bool new_evaluation_point) override {
+    const ParamVector x = JetPasses<N>::with_free(p_, base_, z_);
+    ready_ = Ready::Nothing;
+    if (!evaluate_jacobians) {
       // The previous trial was rejected if its normal equations are still unclaimed.
       const bool last_accepted = !kept_;
       kept_ = false;
-      if (last_accepted && !expect_final(z) && JetPasses<N>::normal_equations(p_, x, kept_ne_)) {
-        std::copy(z, z + N, kept_z_.begin());
+      if (last_accepted && !expect_final() && JetPasses<N>::normal_equations(p_, x, kept_ne_)) {
         kept_ = true;
-        return cost_only(kept_ne_.rtr, residuals);
+        sum_sq_ = kept_ne_.rtr;
+        ready_ = Ready::Cost;
+        return;
       }
       // Also where only a derivative was not finite: the cost alone decides a trial, as before.
-      const double ss = sum_of_squares(p_, x);
-      if (!std::isfinite(ss)) return false;
-      return cost_only(ss, residuals);
+      sum_sq_ = sum_of_squares(p_, x);
+      if (std::isfinite(sum_sq_)) ready_ = Ready::Cost;
+      return;
     }
-    NormalEquations fresh;
-    const bool reuse = kept_ && std::equal(z, z + N, kept_z_.begin());
+    const bool reuse = kept_ && !new_evaluation_point;
     kept_ = false;
-    if (!reuse && !JetPasses<N>::normal_equations(p_, x, fresh)) return false;
-    const NormalEquations& ne = reuse ? kept_ne_ : fresh;
-    std::copy(z, z + N, at_z_.begin());
-    at_ne_ = ne;
+    NormalEquations fresh;
+    if (!reuse && !JetPasses<N>::normal_equations(p_, x, fresh)) return;
+    at_ne_ = reuse ? kept_ne_ : fresh;
+    std::copy(z_, z_ + N, at_z_.begin());
     have_at_ = true;
-    const SquareRootForm f = square_root_form(ne);
-    for (int i = 0; i < N; ++i) residuals[i] = f.w[i];
-    residuals[N] = f.rho;
-    double* jac = jacobians[0];  // row-major (N + 1) x N
-    for (int i = 0; i < N; ++i)
-      for (int j = 0; j < N; ++j) jac[i * N + j] = f.a(i, j);
-    for (int j = 0; j < N; ++j) jac[N * N + j] = 0.0;
+    form_ = square_root_form(at_ne_);
+    ready_ = Ready::Jacobian;
+  }
+
+  bool fill(double* residuals, double* jacobian) const override {
+    if (ready_ == Ready::Nothing || (jacobian != nullptr && ready_ != Ready::Jacobian))
+      return false;
+    if (ready_ == Ready::Cost) {
+      for (int j = 0; j < N; ++j) residuals[j] = 0.0;
+      residuals[N] = std::sqrt(sum_sq_);
+      return true;
+    }
+    for (int i = 0; i < N; ++i) residuals[i] = form_.w[i];
+    residuals[N] = form_.rho;
+    if (jacobian == nullptr) return true;
+    for (int i = 0; i < N; ++i)  // row-major (N + 1) x N
+      for (int j = 0; j < N; ++j) jacobian[i * N + j] = form_.a(i, j);
+    for (int j = 0; j < N; ++j) jacobian[N * N + j] = 0.0;
     return true;
   }
 
  private:
-  // Whether the trial z looks like the last of the fit: where the Gauss-Newton model at the last
-  // Jacobian predicts a cost change within the function tolerance, Ceres will likely stop on it
-  // and never ask for its Jacobian, so the plain pass is enough. A wrong guess costs one pass,
+  // Whether the trial point looks like the last of the fit: where the Gauss-Newton model at the
+  // last Jacobian predicts a cost change within the function tolerance, Ceres will likely stop on
+  // it and never ask for its Jacobian, so the plain pass is enough. A wrong guess costs one pass,
   // never a bit of the result.
-  bool expect_final(const double* z) const {
+  bool expect_final() const {
     if (!have_at_) return false;
     Eigen::Matrix<double, N, 1> d;
-    for (int j = 0; j < N; ++j) d[j] = z[j] - at_z_[j];
+    for (int j = 0; j < N; ++j) d[j] = z_[j] - at_z_[j];
     const double predicted = at_ne_.jtr.dot(d) + 0.5 * d.dot(at_ne_.jtj * d);
     return std::fabs(predicted) <= p_.settings->function_tolerance * 0.5 * at_ne_.rtr;
   }
 
-  static bool cost_only(double sum_sq, double* residuals) {
-    for (int j = 0; j < N; ++j) residuals[j] = 0.0;
-    residuals[N] = std::sqrt(sum_sq);
-    return true;
-  }
+  enum class Ready { Nothing, Cost, Jacobian };
 
   const LocalProblem& p_;
   ParamVector base_;
+  const double* z_;
+  Ready ready_ = Ready::Nothing;
+  double sum_sq_ = 0.0;
+  SquareRootForm form_;
   // The normal equations of the last trial point, until Ceres asks for them or moves on.
-  mutable bool kept_ = false;
-  mutable std::array<double, N> kept_z_{};
-  mutable NormalEquations kept_ne_;
+  bool kept_ = false;
+  NormalEquations kept_ne_;
   // The point of the last Jacobian and its normal equations: the model of the next trial.
-  mutable bool have_at_ = false;
-  mutable std::array<double, N> at_z_{};
-  mutable NormalEquations at_ne_;
+  bool have_at_ = false;
+  std::array<double, N> at_z_{};
+  NormalEquations at_ne_;
+};
+
+// The residual block: what the evaluations prepared at this point.
+template <int N>
+class PreparedCost final : public ceres::CostFunction {
+ public:
+  explicit PreparedCost(const LocalEvaluations& e) : e_(e) {
+    set_num_residuals(N + 1);
+    mutable_parameter_block_sizes()->push_back(N);
+  }
+
+  bool Evaluate(double const* const* /*parameters*/, double* residuals,
+                double** jacobians) const override {
+    return e_.fill(residuals, jacobians != nullptr ? jacobians[0] : nullptr);
+  }
+
+ private:
+  const LocalEvaluations& e_;
 };
 
 template <int N>
-ceres::CostFunction* make_cost_n(const LocalProblem& p, const ParamVector& base) {
-  return new NormalEquationsCost<N>(p, base);
+std::unique_ptr<LocalEvaluations> make_evaluations_n(const LocalProblem& p, const ParamVector& base,
+                                                     const double* z) {
+  return std::make_unique<NormalEquationsEvaluations<N>>(p, base, z);
+}
+template <int N>
+ceres::CostFunction* make_cost_n(const LocalEvaluations& e) {
+  return new PreparedCost<N>(e);
 }
 template <int N>
 bool normal_equations_n(const LocalProblem& p, const ParamVector& x, NormalEquations& out) {
@@ -306,14 +346,26 @@ bool meat_n(const LocalProblem& p, const ParamVector& x, const Eigen::MatrixXd& 
 void check_width(std::size_t k) {
   if (k < 1 || k > kParamCount) throw std::logic_error("free parameter count out of range");
 }
+std::unique_ptr<LocalEvaluations> make_evaluations(const LocalProblem& p, const ParamVector& base,
+                                                   const double* z) {
+  using Maker =
+      std::unique_ptr<LocalEvaluations> (*)(const LocalProblem&, const ParamVector&, const double*);
+  static constexpr Maker makers[kParamCount] = {
+      make_evaluations_n<1>, make_evaluations_n<2>, make_evaluations_n<3>,
+      make_evaluations_n<4>, make_evaluations_n<5>, make_evaluations_n<6>,
+      make_evaluations_n<7>, make_evaluations_n<8>, make_evaluations_n<9>};
+  check_width(p.free.size());
+  return makers[p.free.size() - 1](p, base, z);
+}
+
 std::unique_ptr<ceres::CostFunction> make_cost_function(const LocalProblem& p,
-                                                        const ParamVector& base) {
-  using Maker = ceres::CostFunction* (*)(const LocalProblem&, const ParamVector&);
+                                                        const LocalEvaluations& e) {
+  using Maker = ceres::CostFunction* (*)(const LocalEvaluations&);
   static constexpr Maker makers[kParamCount] = {make_cost_n<1>, make_cost_n<2>, make_cost_n<3>,
                                                 make_cost_n<4>, make_cost_n<5>, make_cost_n<6>,
                                                 make_cost_n<7>, make_cost_n<8>, make_cost_n<9>};
   check_width(p.free.size());
-  return std::unique_ptr<ceres::CostFunction>(makers[p.free.size() - 1](p, base));
+  return std::unique_ptr<ceres::CostFunction>(makers[p.free.size() - 1](e));
 }
 
 }  // namespace
@@ -398,8 +450,11 @@ LocalOutcome local_fit(const LocalProblem& p, const ParamVector& start, FitObser
   }
   std::vector<double> z;
   for (int i : p.free) z.push_back(out.x[i]);
-  ceres::Problem problem;
-  problem.AddResidualBlock(make_cost_function(p, start).release(), nullptr, z.data());
+  const std::unique_ptr<LocalEvaluations> evaluations = make_evaluations(p, start, z.data());
+  ceres::Problem::Options po;
+  po.evaluation_callback = evaluations.get();
+  ceres::Problem problem(po);
+  problem.AddResidualBlock(make_cost_function(p, *evaluations).release(), nullptr, z.data());
   for (std::size_t j = 0; j < p.free.size(); ++j) {
     problem.SetParameterLowerBound(z.data(), static_cast<int>(j), s.params[p.free[j]].lower);
     problem.SetParameterUpperBound(z.data(), static_cast<int>(j), s.params[p.free[j]].upper);

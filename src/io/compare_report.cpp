@@ -280,7 +280,8 @@ std::string compare_markdown(const ModelComparison& compared, const std::vector<
 
 std::vector<std::string> write_compare_report(const std::string& dir, const ModelComparison& c,
                                               const Dataset& d, const Provenance& provenance,
-                                              const std::vector<std::string>& contacts) {
+                                              const std::vector<std::string>& contacts,
+                                              const std::function<bool()>& stop) {
   // Two fits whose reports would share a directory (the same model and spot) are refused
   // before anything is written.
   std::vector<std::string> subdirectories;
@@ -292,7 +293,7 @@ std::vector<std::string> write_compare_report(const std::string& dir, const Mode
     subdirectories.push_back(sub);
   }
   // Every file of the comparison, the models' reports too, in one transaction.
-  ReportTransaction transaction(dir);
+  ReportTransaction transaction(dir, stop);
   const fs::path out = transaction.staging();
   std::vector<std::string> names;
   for (std::size_t k = 0; k < c.fits.size(); ++k) {

@@ -14,7 +14,6 @@
 #include <stdexcept>
 #include <thread>
 
-#include "io/interruption.hpp"
 #include "io/report_location.hpp"
 
 namespace frictionid {
@@ -37,7 +36,7 @@ std::set<std::string>& registry() {
 
 ReportDirectoryLock::ReportDirectoryLock(
     const std::string& dir, bool wait,
-    const std::function<void(const std::string& lock_file)>& on_wait) {
+    const std::function<void(const std::string& lock_file)>& on_wait, const StopCheck& stop) {
   const ReportLocation loc = report_location(dir);
   std::error_code ec;
   fs::create_directories(loc.parent, ec);
@@ -74,7 +73,7 @@ ReportDirectoryLock::ReportDirectoryLock(
         if (on_wait) on_wait(lock_path.string());
         said = true;
       }
-      if (interrupt_flag().load()) {
+      if (stop && stop()) {
         ::close(fd_);
         throw Interrupted("interrupted while waiting for the lock on report directory " + dir);
       }

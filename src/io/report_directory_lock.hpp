@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "io/stop_check.hpp"
+
 namespace frictionid {
 
 // Another process holds the lock and the caller asked not to wait.
@@ -22,12 +24,13 @@ class ReportDirectoryLock {
  public:
   // wait = false: throws DirectoryLocked at once when another process holds the lock.
   // wait = true: calls on_wait(lock file) once, when it starts waiting (the front end says so
-  // where its user looks; io prints nothing), and waits, polling the interrupt flag
-  // (interruption.hpp), so Ctrl-C still ends the wait with Interrupted. Creates DIR's parent when
+  // where its user looks; io prints nothing), and waits, polling `stop` (stop_check.hpp), so
+  // Ctrl-C still ends the wait with Interrupted. Creates DIR's parent when
   // missing. Taking the lock again in a process that already holds it is a no-op (write_report
   // locks on its own; the CLI locks earlier, before the fit).
   ReportDirectoryLock(const std::string& dir, bool wait,
-                      const std::function<void(const std::string& lock_file)>& on_wait = {});
+                      const std::function<void(const std::string& lock_file)>& on_wait = {},
+                      const StopCheck& stop = {});
   ~ReportDirectoryLock();
   ReportDirectoryLock(const ReportDirectoryLock&) = delete;
   ReportDirectoryLock& operator=(const ReportDirectoryLock&) = delete;

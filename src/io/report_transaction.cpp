@@ -8,9 +8,8 @@
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
+#include <utility>
 #include <vector>
-
-#include "io/interruption.hpp"
 
 namespace frictionid {
 namespace {
@@ -89,8 +88,11 @@ void check_report_directory_replaceable(const std::string& dir) {
   if (!why.empty()) throw std::runtime_error(why);
 }
 
-ReportTransaction::ReportTransaction(const std::string& dir)
-    : dir_(dir), loc_(report_location(dir)), lock_(dir, /*wait=*/true) {
+ReportTransaction::ReportTransaction(const std::string& dir, StopCheck stop)
+    : dir_(dir),
+      stop_(std::move(stop)),
+      loc_(report_location(dir)),
+      lock_(dir, /*wait=*/true, {}, stop_) {
   // Leftovers of a run killed before or during its swap; the lock keeps live runs out.
   const std::string current = link_target(loc_.path());
   const std::string staged_prefix = "." + loc_.name + ".r-";
@@ -135,7 +137,7 @@ void write_staged_file(const fs::path& path, const std::string& content) {
 }
 
 void ReportTransaction::commit() {
-  throw_if_interrupted(("before report " + dir_ + " was replaced").c_str());
+  if (stop_ && stop_()) throw Interrupted("interrupted before report " + dir_ + " was replaced");
   // Every staged file, directory entries included, durable in one call rather than one fsync
   // per file: the swap below must never expose a report whose files are not on disk.
   {

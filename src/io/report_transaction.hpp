@@ -17,6 +17,7 @@
 
 #include "io/report_directory_lock.hpp"
 #include "io/report_location.hpp"
+#include "io/stop_check.hpp"
 
 namespace frictionid {
 
@@ -31,7 +32,8 @@ class ReportTransaction {
   // Locks DIR (waiting; a no-op when this process holds the lock already), cleans up leftovers
   // and creates the staging directory. Throws std::runtime_error (InputError for an unusable
   // DIR name).
-  explicit ReportTransaction(const std::string& dir);
+  // `stop` (stop_check.hpp) is asked while waiting for the lock and before the swap.
+  explicit ReportTransaction(const std::string& dir, StopCheck stop = {});
   // Without commit(), removes the staging directory: DIR stays as it was.
   ~ReportTransaction();
   ReportTransaction(const ReportTransaction&) = delete;
@@ -40,12 +42,13 @@ class ReportTransaction {
   // Where to write the report's files (with write_staged_file).
   const std::filesystem::path& staging() const { return staging_; }
 
-  // Swaps the staged report in. Throws Interrupted (interruption.hpp) when the interrupt flag is
-  // set, std::runtime_error when the swap fails; DIR is unchanged in both cases.
+  // Swaps the staged report in. Throws Interrupted (stop_check.hpp) when the stop check says
+  // so, std::runtime_error when the swap fails; DIR is unchanged in both cases.
   void commit();
 
  private:
   std::string dir_;
+  StopCheck stop_;
   ReportLocation loc_;
   ReportDirectoryLock lock_;
   std::filesystem::path staging_;

@@ -50,7 +50,7 @@ void write_staged_pages(const fs::path& dir, const std::string& stem, const std:
 std::vector<std::string> write_report(const std::string& dir, const FitResult& r, const Dataset& d,
                                       const ReportOptions& o) {
   check_report_columns(d, o);  // a column the options name but the data lack: before any I/O
-  ReportTransaction transaction(dir);
+  ReportTransaction transaction(dir, o.stop);
   const std::vector<std::string> names = write_report_files(transaction.staging(), r, d, o);
   transaction.commit();
   std::vector<std::string> written;

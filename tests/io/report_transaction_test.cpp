@@ -4,7 +4,10 @@
 #include "io/report_transaction.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <filesystem>
 #include <fstream>
@@ -80,6 +83,56 @@ TEST(ReportDirectoryLock, TheLockFileGoesWithTheLock) {
     EXPECT_TRUE(fs::exists(s.path() / ".rep.lock"));
   }
   EXPECT_FALSE(fs::exists(s.path() / ".rep.lock"));
+}
+
+TEST(ReportTransaction,
+     AStopCheckThatSaysStopEndsTheCommitWithInterruptedAndKeepsTheEarlierReport) {
+  ScratchDir s("stop");
+  const std::string dir = (s.path() / "rep").string();
+  write_report_of(dir, "old");
+  int asked = 0;
+  {
+    ReportTransaction t(dir, [&asked] { return ++asked > 0; });
+    write_file_atomically((t.staging() / "report.json").string(), "new");
+    EXPECT_THROW(t.commit(), Interrupted);
+  }
+  EXPECT_GT(asked, 0);
+  EXPECT_EQ(read_file(s.path() / "rep" / "report.json"), "old");
+  EXPECT_EQ(entries(s.path()), 2u);  // rep and its target: nothing staged remains
+}
+
+// Another process holds the lock: the waiting run polls its stop check and ends with Interrupted
+// when it says so, instead of waiting on.
+TEST(ReportDirectoryLock, AWaitEndsWithInterruptedWhenTheStopCheckSaysSo) {
+  ScratchDir s("stopwait");
+  const std::string dir = (s.path() / "rep").string();
+  int ready[2];
+  ASSERT_EQ(::pipe(ready), 0);
+  const pid_t holder = ::fork();
+  ASSERT_GE(holder, 0);
+  if (holder == 0) {  // the other run: takes the lock, says so, and holds it
+    ::close(ready[0]);
+    const ReportDirectoryLock lock(dir, /*wait=*/false);
+    const char byte = 1;
+    if (::write(ready[1], &byte, 1) != 1) ::_exit(1);
+    ::sleep(30);
+    ::_exit(0);
+  }
+  ::close(ready[1]);
+  char byte = 0;
+  ASSERT_EQ(::read(ready[0], &byte, 1), 1);
+  ::close(ready[0]);
+  int asked = 0;
+  bool said = false;
+  EXPECT_THROW(ReportDirectoryLock(
+                   dir, /*wait=*/true, [&said](const std::string&) { said = true; },
+                   [&asked] { return ++asked >= 3; }),
+               Interrupted);
+  EXPECT_TRUE(said);
+  EXPECT_EQ(asked, 3);
+  ::kill(holder, SIGKILL);
+  int status = 0;
+  ::waitpid(holder, &status, 0);
 }
 
 TEST(ReportLocation, DotDotDotAndRootAreRejected) {

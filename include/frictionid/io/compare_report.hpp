@@ -9,6 +9,7 @@
 // a comparison on the circle alone is what it always was.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,7 +35,8 @@ std::string compare_html(const ModelComparison& c, const Dataset& d, const Prove
 std::vector<std::string> coefficient_notes(const ModelComparison& c);
 std::vector<std::string> write_compare_report(const std::string& dir, const ModelComparison& c,
                                               const Dataset& d, const Provenance& p = {},
-                                              const std::vector<std::string>& contacts = {});
+                                              const std::vector<std::string>& contacts = {},
+                                              const std::function<bool()>& stop = {});
 
 // The name of fit k of a comparison on the pages: its model, and "@SPOT" unless contacts[k] is
 // the circle (or contacts is empty).

@@ -3,6 +3,7 @@
 // no wall times, no absolute paths, so the same input and seed give byte-identical reports.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,10 @@ struct ReportOptions {
   // The contact spot as --contact spells it (contact_spot_label of pressure_map_reader.hpp);
   // stated in every file of the report unless it is the circle, whose reports stay as they were.
   std::string contact = "circle";
+  // Asked while waiting for the report directory's lock and before the swap: true ends the
+  // report with Interrupted (src/io/stop_check.hpp), the earlier report intact. The command
+  // line's reads its signal flag.
+  std::function<bool()> stop;
 };
 
 // The report as JSON, keys in docs/design.md's order, parameters in FitResult order. Absent
