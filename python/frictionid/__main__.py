@@ -25,22 +25,27 @@ class Interrupted(Exception):
     """SIGINT, SIGTERM or SIGHUP during the batch: it ends without writing a summary."""
 
 
+_received_signal = 0  # the last of those signals, 0 before any
+
+
 def _stop_on_signals() -> None:
     """Ctrl-C (and SIGTERM, SIGHUP) end the batch as the command line's does, wherever the main
     thread is waiting: the handler raises, and the flag it leaves catches a waiting library
     that swallowed the exception."""
     def handler(signum, frame):
-        _stop_on_signals.received = signum
+        global _received_signal
+        _received_signal = signum
         raise Interrupted(signal.Signals(signum).name)
 
-    _stop_on_signals.received = 0
+    global _received_signal
+    _received_signal = 0
     for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         signal.signal(sig, handler)
 
 
 def _check_interrupted() -> None:
-    if getattr(_stop_on_signals, "received", 0):
-        raise Interrupted(signal.Signals(_stop_on_signals.received).name)
+    if _received_signal:
+        raise Interrupted(signal.Signals(_received_signal).name)
 
 
 def _lock_output(output: str, wait: bool):
