@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <cstddef>
 #include <vector>
 
@@ -73,10 +74,12 @@ class MapStripIntegrator {
     std::array<double, 4> s;  // samples at (x0, y0), (x1, y0), (x0, y1), (x1, y1)
   };
 
-  static constexpr double kFarCells = 4.0;  // a cell this many sides away: product rule
-  static constexpr double kFloor = 1e-7;    // the first piece at a true singularity / cell width
-  static constexpr double kLog = 37.0;      // -ln of the rule's target error (~1e-16)
-  static constexpr int kMaxPoints = 20;
+  static constexpr double kFarCells = 10.0;  // a cell this many sides away: product rule
+  static constexpr double kFloor = 1e-7;     // the first piece at a true singularity / cell width
+  static constexpr double kLog = 29.0;       // -ln of the rule's target error (~2.5e-13)
+  static constexpr double kGrowth = 2.0;     // a graded piece's length / its distance from c
+  static constexpr int kFloorPoints = 8;     // a ln|a| over a piece 1e-7 wide: ~1e-20 of the cell
+  static constexpr int kMaxPoints = 24;
 
   // Gauss–Legendre rules of 1..kMaxPoints points.
   static const std::vector<QuadratureNode>& rule(int n) {
@@ -95,9 +98,18 @@ class MapStripIntegrator {
   // 2n - 1 must carry too.
   static int points_for(double distance, double length, int least) {
     const double z = 1.0 + 2.0 * distance / length;
-    const double rho = z + std::sqrt((z - 1.0) * (z + 1.0));
-    const int n = static_cast<int>(std::ceil(0.5 * (kLog / std::log(rho) + 4.0)));
-    return std::clamp(n, least, kMaxPoints);
+    return points_for_rho(z + std::sqrt((z - 1.0) * (z + 1.0)), least);
+  }
+  // The same for a singularity at (re, im) from the start of a piece of that length.
+  static int points_for(double re, double im, double length, int least) {
+    const std::complex<double> z((2.0 * re - length) / length, 2.0 * im / length);
+    const std::complex<double> r = std::sqrt(z - 1.0) * std::sqrt(z + 1.0);
+    return points_for_rho(std::max(std::abs(z + r), std::abs(z - r)), least);
+  }
+  static int points_for_rho(double rho, int least) {
+    // The error of n points is ~ rho^-(2n - 3): the cubic factor takes three of the degrees.
+    const double n = std::ceil(0.5 * (kLog / std::log(rho) + 3.0));
+    return n < kMaxPoints ? std::max(least, static_cast<int>(n)) : kMaxPoints;
   }
 
   // A cell far from c: sigma0 {1, x, y} times the analytic direction field, by a product rule
@@ -113,7 +125,8 @@ class MapStripIntegrator {
       double e0 = 0.0, e1 = 0.0, e2 = 0.0, f0 = 0.0, f1 = 0.0;  // ∫{1,y,y^2} e_x, ∫{1,y} e_y
       for (const QuadratureNode& gy : ry) {
         const double y = c.y0 + hy * gy.from_left, eta = y - cy;
-        const double w = gy.weight * (lo * gy.from_right + hi * gy.from_left) / std::hypot(a, eta);
+        const double w =
+            gy.weight * (lo * gy.from_right + hi * gy.from_left) / std::sqrt(a * a + eta * eta);
         e0 -= w * eta;
         e1 -= w * eta * y;
         e2 -= w * eta * y * y;
@@ -166,10 +179,10 @@ class MapStripIntegrator {
     double t = 0.0;
     while (t < length) {
       const double dist = std::hypot(t + e, d);
-      const double step = std::max(dist, kFloor * hx);
-      const double end = std::min(length, t + step);
+      const bool floor = dist < kFloor * hx;
+      const double end = std::min(length, t + (floor ? kFloor * hx : kGrowth * dist));
       const double len = end - t;
-      const int n = points_for(std::max(dist, step), len, 3);
+      const int n = floor ? kFloorPoints : points_for(-e - t, d, len, 3);
       for (const QuadratureNode& g : rule(n)) {
         const double off = t + len * g.from_left;  // from p, exact near p
         const double x = p + dir * off;
