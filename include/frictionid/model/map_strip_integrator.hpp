@@ -20,7 +20,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <complex>
 #include <cstddef>
 #include <vector>
 
@@ -52,7 +51,7 @@ class MapStripIntegrator {
       const double hx = c.x1 - c.x0, hy = c.y1 - c.y0;
       const double gx = std::max({0.0, c.x0 - cx, cx - c.x1});
       const double gy = std::max({0.0, c.y0 - cy, cy - c.y1});
-      const double gap = std::hypot(gx, gy);
+      const double gap = std::sqrt(gx * gx + gy * gy);
       if (gap > kFarCells * std::max(hx, hy))
         far_cell(c, cx, cy, gap, acc);
       else
@@ -101,10 +100,13 @@ class MapStripIntegrator {
     return points_for_rho(z + std::sqrt((z - 1.0) * (z + 1.0)), least);
   }
   // The same for a singularity at (re, im) from the start of a piece of that length.
+  // The ellipse with foci +-1 through z has parameter rho = a + sqrt(a^2 - 1), a the half sum of
+  // the distances from z to the foci.
   static int points_for(double re, double im, double length, int least) {
-    const std::complex<double> z((2.0 * re - length) / length, 2.0 * im / length);
-    const std::complex<double> r = std::sqrt(z - 1.0) * std::sqrt(z + 1.0);
-    return points_for_rho(std::max(std::abs(z + r), std::abs(z - r)), least);
+    const double zr = (2.0 * re - length) / length, zi = 2.0 * im / length;
+    const double a =
+        0.5 * (std::sqrt((zr - 1) * (zr - 1) + zi * zi) + std::sqrt((zr + 1) * (zr + 1) + zi * zi));
+    return points_for_rho(a + std::sqrt((a - 1.0) * (a + 1.0)), least);
   }
   static int points_for_rho(double rho, int least) {
     // The error of n points is ~ rho^-(2n - 3): the cubic factor takes three of the degrees.
@@ -178,7 +180,7 @@ class MapStripIntegrator {
     const double hx = c.x1 - c.x0, H = c.y1 - c.y0;
     double t = 0.0;
     while (t < length) {
-      const double dist = std::hypot(t + e, d);
+      const double dist = std::sqrt((t + e) * (t + e) + d * d);
       const bool floor = dist < kFloor * hx;
       const double end = std::min(length, t + (floor ? kFloor * hx : kGrowth * dist));
       const double len = end - t;
