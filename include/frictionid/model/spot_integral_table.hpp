@@ -337,9 +337,8 @@ class SpotIntegralTable {
   static constexpr double kCheckTolerance = 5e-11;   // the cell's check point / A0
   static constexpr double kStoreTolerance = 2e-11;   // dropped by the cut into pieces / A0
   static constexpr int kStartDegree = 8;
-  // A map's cells between grid lines settle at degree ~20: 10, 20 gets there where 8 overshoots
-  // to 24 (80,000 points for the 13 x 9 footprint instead of 100,000).
-  static constexpr int kMapStartDegree = 10;
+  // A map's cells between grid lines settle at degree ~18 (Builder::grow).
+  static constexpr int kMapStartDegree = 9;
   int start_degree() const { return kind_ == SpotKind::Map ? kMapStartDegree : kStartDegree; }
   static constexpr int kMaxSampleDegree = 64;
   static constexpr int kStoreDegree = 16;
@@ -715,26 +714,16 @@ class SpotIntegralTable {
   // A map (docs/physics.md §9.1): the integrals are not smooth across the grid lines (sigma0
   // kinks there, d^3 ln d, or jumps at the map's edges, d^2 ln d), so every line is a cell
   // boundary and each interval between two lines is one root cell graded towards both (power
-  // 0); outside the grid one cell graded towards the edge and linear cells out to the box that
-  // holds the disk |c - centre| <= R_near. The far patch turns about the map's centre.
+  // 0); outside the grid one cell graded towards the edge out to the box that holds the disk
+  // |c - centre| <= R_near. The far patch turns about the map's centre.
   void make_map_roots() {
     const PressureMap& m = *map_;
     const double mx = 0.5 * (m.x.front() + m.x.back()), my = 0.5 * (m.y.front() + m.y.back());
     near_ = kNear * std::hypot(0.5 * (m.x.back() - m.x.front()), 0.5 * (m.y.back() - m.y.front()));
     auto cells = [this](const std::vector<double>& grid, double centre) {
       std::vector<Axis> out;
-      auto outside = [&out](double edge, double to) {  // from the edge outwards, either way
-        const double room = std::fabs(to - edge), dir = to > edge ? 1.0 : -1.0;
-        const double g = std::min(kGraded, room);
-        std::vector<Axis> part = {Axis{edge, edge + dir * g, 3, dir < 0.0}};
-        for (double from = g; from < room;) {
-          const double next = std::min(room, from * (1.0 + kRatio));
-          part.push_back(Axis{edge + dir * from, edge + dir * next, 1, true});
-          from = next;
-        }
-        for (Axis& a : part)
-          if (a.lo > a.hi) std::swap(a.lo, a.hi);
-        out.insert(out.end(), part.begin(), part.end());
+      auto outside = [&out](double edge, double to) {  // one cell graded towards the edge
+        out.push_back(to > edge ? Axis{edge, to, 3, false} : Axis{to, edge, 3, true});
       };
       outside(grid.front(), centre - near_);
       for (std::size_t i = 0; i + 1 < grid.size(); ++i)
@@ -1110,6 +1099,12 @@ class SpotIntegralTable {
       return next;
     }
     static bool can_grow(int n) { return 2 * n <= kMaxSampleDegree; }
+    // A map's cell goes from its start degree to twice that first: the extrapolation from 9
+    // points overshoots what nearly all of them need (18).
+    int grow(const std::vector<double>& m, int n) const {
+      if (t.kind_ == SpotKind::Map && n == kMapStartDegree) return 2 * n;
+      return next_degree(m, n);
+    }
 
     void decide(Cell& c, std::vector<Cell>& next) {
       const Series s = transform(c.values, c.n0, c.n1);
@@ -1133,8 +1128,8 @@ class SpotIntegralTable {
       // (A degree grows to a multiple of itself, so that the points nest, or the cell splits.)
       if ((bad0 && can_grow(n0)) || (bad1 && can_grow(n1))) {
         Cell d = c;
-        d.n0 = bad0 && can_grow(n0) ? next_degree(m0, n0) : n0;
-        d.n1 = bad1 && can_grow(n1) ? next_degree(m1, n1) : n1;
+        d.n0 = bad0 && can_grow(n0) ? grow(m0, n0) : n0;
+        d.n1 = bad1 && can_grow(n1) ? grow(m1, n1) : n1;
         resize(d);
         const int f0 = d.n0 / n0, f1 = d.n1 / n1;
         for (int j = 0; j <= n1; ++j)
