@@ -1,5 +1,6 @@
 // The twelve spot integrals of spot_integrals.hpp tabulated once over the whole plane of the
-// centre of rotation c, for one spot (an ellipse or a rectangle), aspect q and pressure law. A
+// centre of rotation c, for one spot (an ellipse, a rectangle or a pressure map), aspect q and
+// pressure law. A
 // fit with those fixed evaluates the same twelve functions of c at every row of every iteration
 // (docs/physics.md §9.3); the table answers in ~0.3 us where the ray integration of
 // SpotIntegrator takes 100-300 us, after a build of 0.05-0.4 s of CPU time.
@@ -27,6 +28,13 @@
 //  - far: t = 1/|c| in [0, 1/R_near] and the physical angle gamma. t = 0 is the sliding limit
 //    e = (sin gamma, -cos gamma), from the moments A0, Axx, Ayy; R_near is 1.5 times the spot's
 //    largest radius, which bounds the expansion in t (radius 1/max|r|).
+//  - map: no symmetry, so the whole plane: a Cartesian box about the map's centre holding the
+//    disk of radius R_near (1.5 times its half-diagonal), every grid line a cell boundary and
+//    each interval between two lines one root cell graded towards both (sin^2 of a quarter
+//    turn: the kinks' d^3 ln d and the edges' jumps, d^2 ln d, turn into (1 -+ s)^6 ln and
+//    (1 -+ s)^4 ln), one cell graded towards each edge outside it; the far patch about the map's
+//    centre over the full turn, with the map's own moments (Ax, Ay, Axy need not vanish). Its
+//    points come from MapStripIntegrator (map_strip_integrator.hpp).
 // Each patch is a grid of root cells. On both sides of every singular line (and about every
 // corner) a cell of width 0.35 is graded as u = u_s +- w ((1 -+ s)/2)^3 in its coordinate
 // s in [-1, 1] (powers 4 and 6 for the ring law's d ln d): d^2 ln d becomes s^6 ln s, which a
@@ -45,7 +53,9 @@
 // exactly on halves until what a cut drops sums to < kStoreTolerance), and each piece keeps per
 // row only the coefficients that matter. The build is deterministic: the same bits on any number
 // of threads. 2,000-8,000 points for an ellipse, 8,000-23,000 for a rectangle at q = 0.4-2.5;
-// an ellipse of aspect 0.1 or 4 needs 10,000-30,000.
+// an ellipse of aspect 0.1 or 4 needs 10,000-30,000; a map ~450 per grid cell (degree 9, then
+// 18: 66,000 for the 13 x 9 footprint, 3.4 s of CPU time at ~45 us a point; 170,000 and 18 s
+// for a rough random 15 x 15 grid).
 //
 // The points. Ellipse: SpotIntegrator, with rules chosen for the law (node_rules: Gauss-Legendre,
 // exact where sigma0 is a polynomial along a ray; a sine-squared substitution for Hertz and
@@ -57,7 +67,9 @@
 // uniform, Hertz, parabolic and annulus laws and q from 0.4 to 2.5, measured at 4,000 random
 // centres including the spot's centre, the rim and edges to 1e-8, the corners, and |c| up to
 // 1e6 (tests/model/spot_integral_table_test.cpp); stats().estimate is the build's own worst
-// estimate. Cost: experiments/README.md, "Contact spots".
+// estimate. Maps: within 5e-12 A0 of MapStripIntegrator for the footprint, 5e-11 for a rough
+// random 15 x 15 grid (the check points accept 5e-11). Cost: experiments/README.md, "Contact
+// spots".
 #pragma once
 
 #include <algorithm>
