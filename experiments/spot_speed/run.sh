@@ -22,7 +22,7 @@ commit="$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
   echo
   echo "Commit $commit, g++ -O3, $(nproc) CPUs, load average $(cut -d' ' -f1 /proc/loadavg) at the" \
        "start; medians of $REPEAT builds and of $REPEAT (table: $((5 * REPEAT))) passes over 256" \
-       "centres of rotation, one thread (builds over 1 s: medians of 3)."
+       "centres of rotation (CPU time), one thread; builds over 1 s: medians of 3."
   echo
   "$out/spot_speed" --repeat "$REPEAT" --root "$root"
 } > "$here/results.md"
