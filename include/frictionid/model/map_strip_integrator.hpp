@@ -14,7 +14,7 @@
 // it (the closed forms' terms would cancel there, growing like the square of the distance).
 // Cells whose four samples are zero are skipped. Agrees with the two-dimensional oracle of the
 // tests to 5e-14 of fN and fNR on random grids, centres on and next to grid lines and nodes
-// included; ~45 us a point on the 13 x 9 footprint (100 x-pieces, 700 closed-form strips),
+// included; ~40 us of CPU a point on the 13 x 9 footprint (100 x-pieces, 700 closed-form strips),
 // against ~3 ms for the rays of SpotIntegrator (experiments/README.md, "Contact spots").
 #pragma once
 
@@ -27,6 +27,7 @@
 #include <frictionid/model/contact_spot.hpp>
 #include <frictionid/model/gauss_legendre_rule.hpp>
 #include <frictionid/model/spot_integrals.hpp>
+#include <frictionid/model/tanh_sinh_rule.hpp>
 
 namespace frictionid::model {
 
@@ -78,7 +79,13 @@ class MapStripIntegrator {
   static constexpr double kFloor = 1e-7;     // the first piece at a true singularity / cell width
   static constexpr double kLog = 26.0;       // -ln of a cell's error bound (5e-12 of it)
   static constexpr double kGrowth = 2.0;     // a graded piece's length / its distance from c
-  static constexpr int kFloorPoints = 8;     // a ln|a| over a piece 1e-7 wide: ~1e-20 of the cell
+  static constexpr int kFloorPoints = 8;
+  // A singularity within kSingular kNearEnd of a piece's end: the piece's first kNearEnd by
+  // tanh-sinh, which errs by ~exp(-2 pi w/h) of the singularity's share, w ~ (pi/2)/ln(width/
+  // distance): < 1e-13 of the cell for any distance (51 nodes where the grading takes 180 at
+  // 1e-9 of the cell).
+  static constexpr double kNearEnd = 0.05;
+  static constexpr double kSingular = 0.01;  // a ln|a| over a piece 1e-7 wide: ~1e-20 of the cell
   static constexpr int kMaxPoints = 24;
 
   // Gauss–Legendre rules of 1..kMaxPoints points.
@@ -164,38 +171,45 @@ class MapStripIntegrator {
     const double eta0 = c.y0 - cy, eta1 = c.y1 - cy;
     // Sides of c_x within the cell: each runs from p (the point of the cell nearest c_x) away.
     if (cx > c.x0 && cx < c.x1) {
-      side(c, cx, cy, eta0, eta1, cx, c.x1 - cx, +1.0, 0.0, gy, acc);
-      side(c, cx, cy, eta0, eta1, cx, cx - c.x0, -1.0, 0.0, gy, acc);
+      side(c, cy, eta0, eta1, cx, c.x1 - cx, +1.0, 0.0, gy, acc);
+      side(c, cy, eta0, eta1, cx, cx - c.x0, -1.0, 0.0, gy, acc);
     } else if (cx <= c.x0) {
-      side(c, cx, cy, eta0, eta1, c.x0, hx, +1.0, gx, gy, acc);
+      side(c, cy, eta0, eta1, c.x0, hx, +1.0, gx, gy, acc);
     } else {
-      side(c, cx, cy, eta0, eta1, c.x1, hx, -1.0, gx, gy, acc);
+      side(c, cy, eta0, eta1, c.x1, hx, -1.0, gx, gy, acc);
     }
   }
 
   // x = p + dir t for t in [0, length]; the singularities lie `e` beyond p along x and `d` off
   // the real axis (d = 0: c_y within the cell, a ln|a| at x = c_x).
-  void side(const Cell& c, double cx, double cy, double eta0, double eta1, double p, double length,
-            double dir, double e, double d, double* acc) const {
+  void side(const Cell& c, double cy, double eta0, double eta1, double p, double length, double dir,
+            double e, double d, double* acc) const {
     if (!(length > 0.0)) return;
     const double hx = c.x1 - c.x0, H = c.y1 - c.y0;
-    double t = 0.0;
-    while (t < length) {
-      const double dist = std::sqrt((t + e) * (t + e) + d * d);
-      const bool floor = dist < kFloor * hx;
-      const double end = std::min(length, t + (floor ? kFloor * hx : kGrowth * dist));
-      const double len = end - t;
-      const int n = floor ? kFloorPoints : points_for(-e - t, d, len, 3);
-      for (const QuadratureNode& g : rule(n)) {
+    auto piece = [&](double t, double len, const std::vector<QuadratureNode>& nodes) {
+      for (const QuadratureNode& g : nodes) {
         const double off = t + len * g.from_left;  // from p, exact near p
         const double x = p + dir * off;
-        // a = x - c_x: exact next to c_x when p is c_x.
-        const double a = p == cx ? dir * off : x - cx;
+        const double a = dir * (off + e);  // x - c_x, exact next to c_x
         const double tx = (x - c.x0) / hx;
         const double lo = c.s[0] + (c.s[1] - c.s[0]) * tx;  // sigma0 at y0 and y1
         const double hi = c.s[2] + (c.s[3] - c.s[2]) * tx;
         strip(acc, g.weight * len, x, a, cy, eta0, eta1, H, lo, hi);
       }
+    };
+    double t = 0.0;
+    if (std::sqrt(e * e + d * d) < kSingular * kNearEnd * length) {
+      // A singularity this close to p: tanh-sinh over [0, kNearEnd length] (its nodes crowd
+      // towards p double-exponentially), graded pieces beyond.
+      t = kNearEnd * length;
+      piece(0.0, t, radial_rule());
+    }
+    while (t < length) {
+      const double dist = std::sqrt((t + e) * (t + e) + d * d);
+      const bool floor = dist < kFloor * hx;
+      const double end = std::min(length, t + (floor ? kFloor * hx : kGrowth * dist));
+      const double len = end - t;
+      piece(t, len, rule(floor ? kFloorPoints : points_for(-e - t, d, len, 3)));
       t = end;
     }
   }
