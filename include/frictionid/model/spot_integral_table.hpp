@@ -54,8 +54,8 @@
 // row only the coefficients that matter. The build is deterministic: the same bits on any number
 // of threads. 2,000-8,000 points for an ellipse, 8,000-23,000 for a rectangle at q = 0.4-2.5;
 // an ellipse of aspect 0.1 or 4 needs 10,000-30,000; a map ~450 per grid cell (degree 9, then
-// 18: 66,000 for the 13 x 9 footprint, 3.4 s of CPU time at ~45 us a point; 170,000 and 18 s
-// for a rough random 15 x 15 grid).
+// 18: 66,000 for the 13 x 9 footprint, 3.0-3.2 s of CPU time at ~45 us a point; 190,000 and
+// 16 s for a rough random 15 x 15 grid).
 //
 // The points. Ellipse: SpotIntegrator, with rules chosen for the law (node_rules: Gauss-Legendre,
 // exact where sigma0 is a polynomial along a ray; a sine-squared substitution for Hertz and
@@ -263,8 +263,9 @@ class SpotIntegralTable {
  public:
   static constexpr int kChannels = 12;  // ex[0..2], ey[0..2], x_ey[0..2], y_ex[0..2]
 
-  // Tabulates the integrals of an ellipse or a rectangle (a circle is the ellipse q = 1; a map
-  // throws std::invalid_argument) with aspect q and this law. The build asks `stop` before every
+  // Tabulates the integrals of an ellipse or a rectangle (a circle is the ellipse q = 1) with
+  // aspect q and this law, or of a pressure map (q and the law are ignored; the table keeps the
+  // map). A spot without load throws std::invalid_argument. The build asks `stop` before every
   // point, from the worker threads, and throws SpotTableBuildStopped when it says so.
   SpotIntegralTable(const ContactSpot& spot, const PressureLaw<double>& law, double q,
                     const std::function<bool()>& stop = {}, int threads = 0)
