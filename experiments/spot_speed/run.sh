@@ -2,7 +2,7 @@
 # What do the tabulated spot integrals cost to build and to evaluate? (README.md, "Contact
 # spots")
 #
-#   experiments/spot_speed/run.sh        # ~1 min; REPEAT=5 builds and passes per median
+#   experiments/spot_speed/run.sh        # ~5 min; REPEAT=5 builds and passes per median
 #
 # Builds spot_speed.cpp (header-only, no CMake target) with g++ -O3, as a Release build, into
 # out/ and writes results.md next to this script.
@@ -22,8 +22,8 @@ commit="$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
   echo
   echo "Commit $commit, g++ -O3, $(nproc) CPUs, load average $(cut -d' ' -f1 /proc/loadavg) at the" \
        "start; medians of $REPEAT builds and of $REPEAT (table: $((5 * REPEAT))) passes over 256" \
-       "centres of rotation, one thread."
+       "centres of rotation (CPU time), one thread; builds over 1 s: medians of 3."
   echo
-  "$out/spot_speed" --repeat "$REPEAT"
+  "$out/spot_speed" --repeat "$REPEAT" --root "$root"
 } > "$here/results.md"
 cat "$here/results.md"

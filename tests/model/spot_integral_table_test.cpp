@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
@@ -22,6 +23,7 @@
 
 #include <frictionid/model/contact_spot.hpp>
 #include <frictionid/model/gauss_legendre_rule.hpp>
+#include <frictionid/model/map_strip_integrator.hpp>
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/model/spot_integrals.hpp>
 #include <frictionid/model/tanh_sinh_rule.hpp>
@@ -414,13 +416,112 @@ TEST(SpotIntegralTable, ItServesOnlyItsSpotAspectAndLaw) {
   EXPECT_TRUE(circle.matches(ContactSpot::ellipse(1.0), 1.0, PressureLaw<double>::hertz()));
 }
 
-TEST(SpotIntegralTable, AMapHasNoTable) {
+// A random map: 4 lines each way, samples in [0.1, 1.5] with some zeros, nonzero on the rim
+// (sigma0 jumps at the map's edges).
+std::shared_ptr<PressureMap> random_map(Uniform& u) {
+  auto m = std::make_shared<PressureMap>();
+  auto lines = [&u](std::size_t n, double lo, double hi) {
+    std::vector<double> out;
+    for (std::size_t k = 0; k < n; ++k)
+      out.push_back(lo +
+                    (hi - lo) *
+                        (static_cast<double>(k) + (k == 0 || k + 1 == n ? 0.0 : u.in(-0.3, 0.3))) /
+                        static_cast<double>(n - 1));
+    return out;
+  };
+  m->x = lines(4, -u.in(0.6, 1.2), u.in(0.6, 1.2));
+  m->y = lines(4, -u.in(0.4, 1.0), u.in(0.4, 1.0));
+  for (std::size_t k = 0; k < m->x.size() * m->y.size(); ++k)
+    m->sigma0.push_back(u.u01() < 0.15 ? 0.0 : u.in(0.1, 1.5));
+  return m;
+}
+
+// Centres over the whole plane for a map: inside, on and within 1e-9..1e-2 of grid lines and
+// nodes (the map's corners among them), and far away up to |c| = 1e6.
+std::vector<std::array<double, 2>> map_centres(const PressureMap& m, Uniform& u, int count) {
+  std::vector<std::array<double, 2>> out;
+  const double x0 = m.x.front(), x1 = m.x.back(), y0 = m.y.front(), y1 = m.y.back();
+  auto near = [&u] { return u.sign() * std::pow(10.0, u.in(-9.0, -2.0)); };
+  for (int i = 0; i < count; ++i) {
+    const double gx = m.x[u.index(m.nx())], gy = m.y[u.index(m.ny())];
+    switch (i % 6) {
+      case 0:
+        out.push_back({u.in(x0 - 1.0, x1 + 1.0), u.in(y0 - 1.0, y1 + 1.0)});
+        break;
+      case 1:
+        out.push_back({gx + near(), u.in(y0 - 0.3, y1 + 0.3)});
+        break;
+      case 2:
+        out.push_back({u.in(x0 - 0.3, x1 + 0.3), gy + near()});
+        break;
+      case 3:
+        out.push_back({gx + near(), gy + near()});
+        break;
+      case 4:
+        out.push_back({gx, gy});
+        break;
+      default: {
+        const double r = std::pow(10.0, u.in(0.3, 6.0)), t = u.in(-kPi, kPi);
+        out.push_back({r * std::cos(t), r * std::sin(t)});
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+TEST(SpotIntegralTable, MapsMatchTheStripIntegrationOverThePlane) {
+  // A map has no symmetry: the table covers the whole plane. Its points come from
+  // MapStripIntegrator (itself checked against the 2-D oracle), which is the reference here.
+  Uniform u(31);
+  for (int k = 0; k < 2; ++k) {
+    const auto map = random_map(u);
+    const ContactSpot spot = ContactSpot::pressure_map(map);
+    const SpotIntegralTable table(spot, PressureLaw<double>::uniform(), 1.0, {}, 2);
+    const MapStripIntegrator strips(*map);
+    const double A0 = map_moments(*map).A0;
+    Worst worst;
+    for (const auto& c : map_centres(*map, u, 600)) {
+      const auto got = channels(table(c[0], c[1])), want = channels(strips(c[0], c[1]));
+      for (std::size_t j = 0; j < 12; ++j) {
+        const double e = std::fabs(got[j] - want[j]) / A0;
+        if (!(e <= worst.error)) worst = {e, c[0], c[1], static_cast<int>(j)};
+      }
+    }
+    EXPECT_LT(worst.error, kTolerance) << "map " << k << ": channel " << worst.channel << " at ("
+                                       << worst.cx << ", " << worst.cy << ")";
+    EXPECT_LT(table.stats().estimate, kTolerance);
+    // Far away: the sliding limit with the map's own moments (no symmetry: Ax, Ay, Axy too).
+    const SpotMoments<double> m = map_moments(*map);
+    for (double gamma : {0.3, 2.5, -1.2}) {
+      const auto v = channels(table(1e300 * std::cos(gamma), 1e300 * std::sin(gamma)));
+      const double s = std::sin(gamma), c = std::cos(gamma);
+      const double want[12] = {s * m.A0,  s * m.Ax,   s * m.Ay,   -c * m.A0, -c * m.Ax, -c * m.Ay,
+                               -c * m.Ax, -c * m.Axx, -c * m.Axy, s * m.Ay,  s * m.Axy, s * m.Ayy};
+      for (std::size_t j = 0; j < 12; ++j) EXPECT_NEAR(v[j], want[j], kTolerance * A0) << j;
+    }
+  }
+}
+
+TEST(SpotIntegralTable, AMapsTableServesThatMapObjectOnly) {
   auto map = std::make_shared<PressureMap>();
   map->x = {-1.0, 1.0};
-  map->y = {-1.0, 1.0};
-  map->sigma0 = {1.0, 1.0, 1.0, 1.0};
+  map->y = {-0.5, 0.5};
+  map->sigma0 = {1.0, 0.5, 0.8, 1.2};
+  const auto copy = std::make_shared<PressureMap>(*map);
+  const SpotIntegralTable table(ContactSpot::pressure_map(map), PressureLaw<double>::uniform(),
+                                1.0);
+  EXPECT_EQ(table.kind(), SpotKind::Map);
+  EXPECT_TRUE(table.matches(ContactSpot::pressure_map(map), 1.0, PressureLaw<double>::uniform()));
+  EXPECT_TRUE(table.matches(ContactSpot::pressure_map(map), 0.5, PressureLaw<double>::hertz()));
+  EXPECT_FALSE(table.matches(ContactSpot::pressure_map(copy), 1.0, PressureLaw<double>::uniform()));
+  EXPECT_FALSE(table.matches(ContactSpot::rect(1.0), 1.0, PressureLaw<double>::uniform()));
+  const SpotIntegralTable rect(ContactSpot::rect(1.0), PressureLaw<double>::uniform(), 1.0);
+  EXPECT_FALSE(rect.matches(ContactSpot::pressure_map(map), 1.0, PressureLaw<double>::uniform()));
+  auto empty = std::make_shared<PressureMap>(*map);
+  std::fill(empty->sigma0.begin(), empty->sigma0.end(), 0.0);
   EXPECT_THROW(
-      SpotIntegralTable(ContactSpot::pressure_map(map), PressureLaw<double>::uniform(), 1.0),
+      SpotIntegralTable(ContactSpot::pressure_map(empty), PressureLaw<double>::uniform(), 1.0),
       std::invalid_argument);
 }
 

@@ -1,5 +1,6 @@
 // The twelve spot integrals of spot_integrals.hpp tabulated once over the whole plane of the
-// centre of rotation c, for one spot (an ellipse or a rectangle), aspect q and pressure law. A
+// centre of rotation c, for one spot (an ellipse, a rectangle or a pressure map), aspect q and
+// pressure law. A
 // fit with those fixed evaluates the same twelve functions of c at every row of every iteration
 // (docs/physics.md §9.3); the table answers in ~0.3 us where the ray integration of
 // SpotIntegrator takes 100-300 us, after a build of 0.05-0.4 s of CPU time.
@@ -27,6 +28,13 @@
 //  - far: t = 1/|c| in [0, 1/R_near] and the physical angle gamma. t = 0 is the sliding limit
 //    e = (sin gamma, -cos gamma), from the moments A0, Axx, Ayy; R_near is 1.5 times the spot's
 //    largest radius, which bounds the expansion in t (radius 1/max|r|).
+//  - map: no symmetry, so the whole plane: a Cartesian box about the map's centre holding the
+//    disk of radius R_near (1.5 times its half-diagonal), every grid line a cell boundary and
+//    each interval between two lines one root cell graded towards both (sin^2 of a quarter
+//    turn: the kinks' d^3 ln d and the edges' jumps, d^2 ln d, turn into (1 -+ s)^6 ln and
+//    (1 -+ s)^4 ln), one cell graded towards each edge outside it; the far patch about the map's
+//    centre over the full turn, with the map's own moments (Ax, Ay, Axy need not vanish). Its
+//    points come from MapStripIntegrator (map_strip_integrator.hpp).
 // Each patch is a grid of root cells. On both sides of every singular line (and about every
 // corner) a cell of width 0.35 is graded as u = u_s +- w ((1 -+ s)/2)^3 in its coordinate
 // s in [-1, 1] (powers 4 and 6 for the ring law's d ln d): d^2 ln d becomes s^6 ln s, which a
@@ -45,7 +53,9 @@
 // exactly on halves until what a cut drops sums to < kStoreTolerance), and each piece keeps per
 // row only the coefficients that matter. The build is deterministic: the same bits on any number
 // of threads. 2,000-8,000 points for an ellipse, 8,000-23,000 for a rectangle at q = 0.4-2.5;
-// an ellipse of aspect 0.1 or 4 needs 10,000-30,000.
+// an ellipse of aspect 0.1 or 4 needs 10,000-30,000; a map ~450 per grid cell (degree 9, then
+// 18: 66,000 for the 13 x 9 footprint, 3.0-3.2 s of CPU time at ~45 us a point; 190,000 and
+// 16 s for a rough random 15 x 15 grid).
 //
 // The points. Ellipse: SpotIntegrator, with rules chosen for the law (node_rules: Gauss-Legendre,
 // exact where sigma0 is a polynomial along a ray; a sine-squared substitution for Hertz and
@@ -57,7 +67,9 @@
 // uniform, Hertz, parabolic and annulus laws and q from 0.4 to 2.5, measured at 4,000 random
 // centres including the spot's centre, the rim and edges to 1e-8, the corners, and |c| up to
 // 1e6 (tests/model/spot_integral_table_test.cpp); stats().estimate is the build's own worst
-// estimate. Cost: experiments/README.md, "Contact spots".
+// estimate. Maps: within 5e-12 A0 of MapStripIntegrator for the footprint, 5e-11 for a rough
+// random 15 x 15 grid (the check points accept 5e-11). Cost: experiments/README.md, "Contact
+// spots".
 #pragma once
 
 #include <algorithm>
@@ -78,6 +90,7 @@
 
 #include <frictionid/model/contact_spot.hpp>
 #include <frictionid/model/gauss_legendre_rule.hpp>
+#include <frictionid/model/map_strip_integrator.hpp>
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/model/spot_integrals.hpp>
 #include <frictionid/model/tanh_sinh_rule.hpp>
@@ -250,8 +263,9 @@ class SpotIntegralTable {
  public:
   static constexpr int kChannels = 12;  // ex[0..2], ey[0..2], x_ey[0..2], y_ex[0..2]
 
-  // Tabulates the integrals of an ellipse or a rectangle (a circle is the ellipse q = 1; a map
-  // throws std::invalid_argument) with aspect q and this law. The build asks `stop` before every
+  // Tabulates the integrals of an ellipse or a rectangle (a circle is the ellipse q = 1) with
+  // aspect q and this law, or of a pressure map (q and the law are ignored; the table keeps the
+  // map). A spot without load throws std::invalid_argument. The build asks `stop` before every
   // point, from the worker threads, and throws SpotTableBuildStopped when it says so.
   SpotIntegralTable(const ContactSpot& spot, const PressureLaw<double>& law, double q,
                     const std::function<bool()>& stop = {}, int threads = 0)
@@ -259,28 +273,41 @@ class SpotIntegralTable {
 
   SpotIntegralTable(const ContactSpot& spot, const PressureLaw<double>& law, double q,
                     const std::function<bool()>& stop, const SpotParallelFor& parallel)
-      : kind_(spot.kind == SpotKind::Rect ? SpotKind::Rect : SpotKind::Ellipse),
+      : kind_(spot.kind == SpotKind::Map    ? SpotKind::Map
+              : spot.kind == SpotKind::Rect ? SpotKind::Rect
+                                            : SpotKind::Ellipse),
         law_(law),
-        q_(spot.has_aspect() ? q : 1.0) {
-    if (spot.kind == SpotKind::Map) throw std::invalid_argument("no table for a pressure map");
+        q_(spot.has_aspect() ? q : 1.0),
+        map_(kind_ == SpotKind::Map ? spot.map : nullptr) {
+    if (kind_ == SpotKind::Map && !map_) throw std::invalid_argument("a map spot without its map");
     if (!(q_ > 0.0) || !std::isfinite(q_))
       throw std::invalid_argument("the spot's aspect q must be > 0");
     const SpotMoments<double> m = spot_moments(spot, law_moments(law), q_);
+    if (!(m.A0 > 0.0)) throw std::invalid_argument("the spot carries no load");
     A0_ = m.A0;
+    Ax_ = m.Ax;
+    Ay_ = m.Ay;
     Axx_ = m.Axx;
+    Axy_ = m.Axy;
     Ayy_ = m.Ayy;
     const SpotIntegrator integrate(spot, law, q_, node_rules(kind_, law));
     const RectStripIntegrator strips(law, q_);
-    Builder{*this, integrate, strips, stop, parallel, {}}.run();
+    const PressureMap none;
+    const MapStripIntegrator map_strips(map_ ? *map_ : none);
+    Builder{*this, integrate, strips, map_strips, stop, parallel, {}}.run();
   }
 
   // The integrals for the centre of rotation at physical (cx, cy), units of R.
   SpotIntegrals operator()(double cx, double cy) const {
     double v[kChannels];
-    evaluate(std::fabs(cx), std::fabs(cy), v);
-    const bool fx = std::signbit(cx), fy = std::signbit(cy);
-    for (int j = 0; j < kChannels; ++j)
-      if ((fx && kOddX[j]) != (fy && kOddY[j])) v[j] = -v[j];
+    if (kind_ == SpotKind::Map) {
+      evaluate(cx, cy, v);  // a map has no symmetry: the whole plane is tabulated
+    } else {
+      evaluate(std::fabs(cx), std::fabs(cy), v);
+      const bool fx = std::signbit(cx), fy = std::signbit(cy);
+      for (int j = 0; j < kChannels; ++j)
+        if ((fx && kOddX[j]) != (fy && kOddY[j])) v[j] = -v[j];
+    }
     SpotIntegrals out;
     for (std::size_t w = 0; w < 3; ++w) {
       out.ex[w] = v[w];
@@ -292,9 +319,11 @@ class SpotIntegralTable {
   }
 
   // Whether this table holds the integrals a model of this spot, aspect and law needs (the same
-  // kind, the same q bit for bit, the same law and shape parameter).
+  // kind, the same q bit for bit, the same law and shape parameter; for a map the same map
+  // object, whatever the law and q).
   bool matches(const ContactSpot& spot, double q, const PressureLaw<double>& law) const {
-    if (spot.kind == SpotKind::Map) return false;
+    if (spot.kind == SpotKind::Map || kind_ == SpotKind::Map)
+      return spot.kind == kind_ && spot.map != nullptr && spot.map == map_;
     const SpotKind kind = spot.kind == SpotKind::Rect ? SpotKind::Rect : SpotKind::Ellipse;
     const double aspect = spot.has_aspect() ? q : 1.0;
     const bool shaped = law.kind == PressureKind::Power || law.kind == PressureKind::Annulus;
@@ -321,6 +350,9 @@ class SpotIntegralTable {
   static constexpr double kCheckTolerance = 5e-11;   // the cell's check point / A0
   static constexpr double kStoreTolerance = 2e-11;   // dropped by the cut into pieces / A0
   static constexpr int kStartDegree = 8;
+  // A map's cells between grid lines settle at degree ~18 (Builder::grow).
+  static constexpr int kMapStartDegree = 9;
+  int start_degree() const { return kind_ == SpotKind::Map ? kMapStartDegree : kStartDegree; }
   static constexpr int kMaxSampleDegree = 64;
   static constexpr int kStoreDegree = 16;
   static constexpr int kMaxDepth = 24;
@@ -401,6 +433,8 @@ class SpotIntegralTable {
 
   // One coordinate of a root cell: s in [-1, 1] to the patch coordinate u in [lo, hi], linear or
   // graded towards a singular line at hi, u = hi - (hi - lo) ((1 - s)/2)^power (at lo: mirrored).
+  // Power 0: graded towards both ends, u = lo + (hi - lo) sin^2(pi (1 + s)/4), quadratic contact
+  // at each (a map's cell between two grid lines: a kink's d^3 ln d becomes (1 -+ s)^6 ln).
   struct Axis {
     double lo = 0.0, hi = 1.0;
     int power = 1;  // 1: linear
@@ -410,11 +444,22 @@ class SpotIntegralTable {
       if (s == -1.0) return lo;
       if (s == 1.0) return hi;
       if (power == 1) return lo + (hi - lo) * 0.5 * (s + 1.0);
+      if (power == 0) {  // sin^2 of a quarter turn, from the nearer end
+        const double h = std::sin(0.25 * M_PI * (1.0 - std::fabs(s)));
+        return s < 0.0 ? lo + (hi - lo) * h * h : hi - (hi - lo) * h * h;
+      }
       if (towards_hi) return hi - (hi - lo) * std::pow(0.5 * (1.0 - s), power);
       return lo + (hi - lo) * std::pow(0.5 * (1.0 + s), power);
     }
     double s_of(double u) const {
       if (power == 1) return std::clamp(2.0 * (u - lo) / (hi - lo) - 1.0, -1.0, 1.0);
+      if (power == 0) {
+        const double from_hi = std::clamp((hi - u) / (hi - lo), 0.0, 1.0);
+        const bool upper = from_hi <= 0.5;
+        const double w = upper ? from_hi : std::clamp((u - lo) / (hi - lo), 0.0, 1.0);
+        const double x = 1.0 - (4.0 / M_PI) * std::asin(std::sqrt(w));
+        return upper ? x : -x;
+      }
       if (towards_hi) return 1.0 - 2.0 * root(std::clamp((hi - u) / (hi - lo), 0.0, 1.0));
       return 2.0 * root(std::clamp((u - lo) / (hi - lo), 0.0, 1.0)) - 1.0;
     }
@@ -475,14 +520,28 @@ class SpotIntegralTable {
         cy = p.y0 + u0 * std::sin(u1);
         return;
       case Coords::Far:
-        cx = std::cos(u1) / u0;
-        cy = std::sin(u1) / u0;
+        cx = p.x0 + std::cos(u1) / u0;
+        cy = p.y0 + std::sin(u1) / u0;
         return;
     }
   }
 
   // The patch of a centre in the first quadrant (index into patches_), and its coordinates.
   std::size_t coordinates(double ax, double ay, double& u0, double& u1) const {
+    if (kind_ == SpotKind::Map) {
+      const Patch& box = patches_[0];
+      if (ax >= box.breaks0.front() && ax <= box.breaks0.back() && ay >= box.breaks1.front() &&
+          ay <= box.breaks1.back()) {
+        u0 = ax;
+        u1 = ay;
+        return 0;
+      }
+      const Patch& far = patches_[1];
+      const double r = std::hypot(ax - far.x0, ay - far.y0);
+      u0 = r < HUGE_VAL ? 1.0 / r : 0.0;
+      u1 = std::atan2(ay - far.y0, ax - far.x0);
+      return 1;
+    }
     if (kind_ == SpotKind::Ellipse) {
       const double X = ax, Y = ay / q_, P = std::hypot(X, Y);
       if (P <= near_) {
@@ -511,14 +570,11 @@ class SpotIntegralTable {
   }
 
   // The limit |c| -> inf in direction gamma: e = (sin gamma, -cos gamma) over the whole spot.
+  // (A map's first moments and Axy need not vanish.)
   std::array<double, kChannels> far_limit(double gamma) const {
     const double s = std::sin(gamma), c = std::cos(gamma);
-    std::array<double, kChannels> v{};
-    v[0] = s * A0_;
-    v[3] = -c * A0_;
-    v[7] = -c * Axx_;
-    v[11] = s * Ayy_;
-    return v;
+    return {s * A0_,  s * Ax_,   s * Ay_,   -c * A0_, -c * Ax_, -c * Ay_,
+            -c * Ax_, -c * Axx_, -c * Axy_, s * Ay_,  s * Axy_, s * Ayy_};
   }
 
   void evaluate(double ax, double ay, double* v) const {
@@ -668,7 +724,39 @@ class SpotIntegralTable {
     patches_.push_back(std::move(p));
   }
 
+  // A map (docs/physics.md §9.1): the integrals are not smooth across the grid lines (sigma0
+  // kinks there, d^3 ln d, or jumps at the map's edges, d^2 ln d), so every line is a cell
+  // boundary and each interval between two lines is one root cell graded towards both (power
+  // 0); outside the grid one cell graded towards the edge out to the box that holds the disk
+  // |c - centre| <= R_near. The far patch turns about the map's centre.
+  void make_map_roots() {
+    const PressureMap& m = *map_;
+    const double mx = 0.5 * (m.x.front() + m.x.back()), my = 0.5 * (m.y.front() + m.y.back());
+    near_ = kNear * std::hypot(0.5 * (m.x.back() - m.x.front()), 0.5 * (m.y.back() - m.y.front()));
+    auto cells = [this](const std::vector<double>& grid, double centre) {
+      std::vector<Axis> out;
+      auto outside = [&out](double edge, double to) {  // one cell graded towards the edge
+        out.push_back(to > edge ? Axis{edge, to, 3, false} : Axis{to, edge, 3, true});
+      };
+      outside(grid.front(), centre - near_);
+      for (std::size_t i = 0; i + 1 < grid.size(); ++i)
+        out.push_back(Axis{grid[i], grid[i + 1], 0, true});
+      outside(grid.back(), centre + near_);
+      std::sort(out.begin(), out.end(), [](const Axis& p, const Axis& r) { return p.lo < r.lo; });
+      return out;
+    };
+    add_patch(Patch(Coords::Box), cells(m.x, mx), cells(m.y, my));
+    std::vector<Axis> turn;
+    for (int k = 0; k < 4; ++k)
+      turn.push_back(Axis{-M_PI + 0.5 * M_PI * k, -M_PI + 0.5 * M_PI * (k + 1), 1, true});
+    add_patch(Patch(Coords::Far, mx, my), {Axis{0.0, 1.0 / near_, 1, true}}, turn);
+  }
+
   void make_roots() {
+    if (kind_ == SpotKind::Map) {
+      make_map_roots();
+      return;
+    }
     // The lines |x| = B (rectangle) or P = B (ellipse) where sigma0 jumps or kinks, and the rim.
     // A table's every sample is a kink (its interpolant is only C^1 there): beyond a few, only
     // its steps are graded and the kinks left to the cells' degrees.
@@ -761,12 +849,15 @@ class SpotIntegralTable {
     return x == 1.0 ? b : x == -1.0 ? a : 0.5 * (a + b) + 0.5 * (b - a) * x;
   }
 
-  // The discrete Chebyshev transform on the extreme points of degree n (a multiple of 8 up to
-  // 64): coefficient k of the interpolant is sum_i M[k][i] f(x_i).
+  // The discrete Chebyshev transform on the extreme points of degree n (1 to 64): coefficient k
+  // of the interpolant is sum_i M[k][i] f(x_i).
   static const std::vector<double>& dct_matrix(int n) {
-    static const std::vector<double> m[] = {make_dct(8),  make_dct(16), make_dct(24), make_dct(32),
-                                            make_dct(40), make_dct(48), make_dct(56), make_dct(64)};
-    return m[n / 8 - 1];
+    static const std::vector<std::vector<double>> m = [] {
+      std::vector<std::vector<double>> all(kMaxSampleDegree + 1);
+      for (int k = 1; k <= kMaxSampleDegree; ++k) all[static_cast<std::size_t>(k)] = make_dct(k);
+      return all;
+    }();
+    return m[static_cast<std::size_t>(n)];
   }
   static std::vector<double> make_dct(int n) {
     std::vector<double> m(static_cast<std::size_t>((n + 1) * (n + 1)));
@@ -859,6 +950,7 @@ class SpotIntegralTable {
     SpotIntegralTable& t;
     const SpotIntegrator& integrate;
     const RectStripIntegrator& strips;
+    const MapStripIntegrator& map_strips;
     const std::function<bool()>& stop;
     const SpotParallelFor& parallel;
 
@@ -891,7 +983,7 @@ class SpotIntegralTable {
         c.root = static_cast<int>(r);
         c.a0 = c.a1 = -1.0;
         c.b0 = c.b1 = 1.0;
-        c.n0 = c.n1 = kStartDegree;
+        c.n0 = c.n1 = t.start_degree();
         c.tree = t.roots_[r].tree;
         resize(c);
         pending.push_back(std::move(c));
@@ -926,7 +1018,9 @@ class SpotIntegralTable {
       double cx = 0.0, cy = 0.0;
       t.centre(patch, k.u0, k.u1, cx, cy);
       const bool by_strips = t.kind_ == SpotKind::Rect && t.law_.kind != PressureKind::Ring;
-      const SpotIntegrals v = by_strips ? strips(cx, cy) : integrate(cx, cy);
+      const SpotIntegrals v = t.kind_ == SpotKind::Map ? map_strips(cx, cy)
+                              : by_strips              ? strips(cx, cy)
+                                                       : integrate(cx, cy);
       Values out;
       for (std::size_t w = 0; w < 3; ++w) {
         out[w] = v.ex[w];
@@ -1015,7 +1109,14 @@ class SpotIntegralTable {
       const double want = (n + more) * kSafety + 1.0;
       int next = 2 * n;
       while (next < want && next + n <= kMaxSampleDegree) next += n;
-      return std::min(next, kMaxSampleDegree);
+      return next;
+    }
+    static bool can_grow(int n) { return 2 * n <= kMaxSampleDegree; }
+    // A map's cell goes from its start degree to twice that first: the extrapolation from 9
+    // points overshoots what nearly all of them need (18).
+    int grow(const std::vector<double>& m, int n) const {
+      if (t.kind_ == SpotKind::Map && n == kMapStartDegree) return 2 * n;
+      return next_degree(m, n);
     }
 
     void decide(Cell& c, std::vector<Cell>& next) {
@@ -1037,10 +1138,11 @@ class SpotIntegralTable {
         t.store_cell(c, s);
         return;
       }
-      if ((bad0 && n0 < kMaxSampleDegree) || (bad1 && n1 < kMaxSampleDegree)) {
+      // (A degree grows to a multiple of itself, so that the points nest, or the cell splits.)
+      if ((bad0 && can_grow(n0)) || (bad1 && can_grow(n1))) {
         Cell d = c;
-        d.n0 = bad0 && n0 < kMaxSampleDegree ? next_degree(m0, n0) : n0;
-        d.n1 = bad1 && n1 < kMaxSampleDegree ? next_degree(m1, n1) : n1;
+        d.n0 = bad0 && can_grow(n0) ? grow(m0, n0) : n0;
+        d.n1 = bad1 && can_grow(n1) ? grow(m1, n1) : n1;
         resize(d);
         const int f0 = d.n0 / n0, f1 = d.n1 / n1;
         for (int j = 0; j <= n1; ++j)
@@ -1055,8 +1157,8 @@ class SpotIntegralTable {
       for (Cell& p : t.split(c, bad0, bad1)) {
         p.depth = c.depth + 1;
         p.check_known = false;
-        if (bad0) p.n0 = 2 * kStartDegree;
-        if (bad1) p.n1 = 2 * kStartDegree;
+        if (bad0) p.n0 = 2 * t.start_degree();
+        if (bad1) p.n1 = 2 * t.start_degree();
         resize(p);
         next.push_back(std::move(p));
       }
@@ -1192,7 +1294,8 @@ class SpotIntegralTable {
   SpotKind kind_;
   PressureLaw<double> law_;
   double q_;
-  double A0_ = 1.0, Axx_ = 0.0, Ayy_ = 0.0;
+  std::shared_ptr<const PressureMap> map_;  // a map's table: its map
+  double A0_ = 1.0, Ax_ = 0.0, Ay_ = 0.0, Axx_ = 0.0, Axy_ = 0.0, Ayy_ = 0.0;
   double near_ = 0.0;           // the polar patch's radius P_near, or the box's side R_near
   std::vector<Patch> patches_;  // ellipse: polar, far; rectangle: box, far, corners
   std::vector<Root> roots_;

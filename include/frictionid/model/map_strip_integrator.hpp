@@ -1,0 +1,258 @@
+// The twelve spot integrals (spot_integrals.hpp) of a pressure map at one centre of rotation c,
+// cell by cell (docs/physics.md §9.1, §9.3). Inside a cell sigma0 is bilinear: for fixed x it is
+// linear in y, so with a = x - c_x, eta = y - c_y and rho = sqrt(a^2 + eta^2)
+//   ∫ sigma0 {1, y, y^2} e_x dy = -∫ (A + B eta) {1, y, y^2} eta/rho deta,
+//   ∫ sigma0 {1, y} e_y dy = a ∫ (A + B eta) {1, y} deta/rho
+// need the primitives of eta^k/rho for k <= 4: ln(eta + rho), rho, (eta rho - a^2 J0)/2,
+// rho^3/3 - a^2 rho and (eta^3 rho - 3 a^2 J2)/4, formed between the cell's edges without
+// cancellation (log1p where both edges lie on one side of c_y). The x-integral is by
+// Gauss–Legendre on pieces graded geometrically towards c_x: the y-integral is analytic in x but
+// for a ln|a| at x = c_x when c_y lies in the cell, and branch points at c_x +- i|eta| of the
+// cell's edges; each piece is at most as long as its distance from the nearest of them, and
+// takes the number of points that its Bernstein ellipse asks for 1e-16. A cell more than
+// kFarCells of its sides from c has an analytic integrand: a product Gauss–Legendre rule takes
+// it (the closed forms' terms would cancel there, growing like the square of the distance).
+// Cells whose four samples are zero are skipped. Agrees with the two-dimensional oracle of the
+// tests to 5e-14 of fN and fNR on random grids, centres on and next to grid lines and nodes
+// included; ~40 us of CPU a point on the 13 x 9 footprint (100 x-pieces, 700 closed-form strips),
+// against ~3 ms for the rays of SpotIntegrator (experiments/README.md, "Contact spots").
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include <frictionid/model/contact_spot.hpp>
+#include <frictionid/model/gauss_legendre_rule.hpp>
+#include <frictionid/model/spot_integrals.hpp>
+#include <frictionid/model/tanh_sinh_rule.hpp>
+
+namespace frictionid::model {
+
+class MapStripIntegrator {
+ public:
+  explicit MapStripIntegrator(const PressureMap& map) : x_(map.x), y_(map.y) {
+    for (std::size_t j = 0; j + 1 < map.ny(); ++j)
+      for (std::size_t i = 0; i + 1 < map.nx(); ++i) {
+        Cell c{x_[i],
+               x_[i + 1],
+               y_[j],
+               y_[j + 1],
+               {map.sample(i, j), map.sample(i + 1, j), map.sample(i, j + 1),
+                map.sample(i + 1, j + 1)}};
+        if (c.s[0] != 0.0 || c.s[1] != 0.0 || c.s[2] != 0.0 || c.s[3] != 0.0) cells_.push_back(c);
+      }
+  }
+
+  // The integrals for the centre of rotation at physical (cx, cy), units of R.
+  SpotIntegrals operator()(double cx, double cy) const {
+    double acc[12] = {};
+    for (const Cell& c : cells_) {
+      const double hx = c.x1 - c.x0, hy = c.y1 - c.y0;
+      const double gx = std::max({0.0, c.x0 - cx, cx - c.x1});
+      const double gy = std::max({0.0, c.y0 - cy, cy - c.y1});
+      const double gap = std::sqrt(gx * gx + gy * gy);
+      if (gap > kFarCells * std::max(hx, hy))
+        far_cell(c, cx, cy, gap, acc);
+      else
+        near_cell(c, cx, cy, gx, gy, acc);
+    }
+    SpotIntegrals out;
+    for (std::size_t w = 0; w < 3; ++w) {
+      out.ex[w] = acc[w];
+      out.ey[w] = acc[3 + w];
+      out.x_ey[w] = acc[6 + w];
+      out.y_ex[w] = acc[9 + w];
+    }
+    return out;
+  }
+
+ private:
+  struct Cell {
+    double x0, x1, y0, y1;
+    std::array<double, 4> s;  // samples at (x0, y0), (x1, y0), (x0, y1), (x1, y1)
+  };
+
+  static constexpr double kFarCells = 10.0;  // a cell this many sides away: product rule
+  static constexpr double kFloor = 1e-7;     // the first piece at a true singularity / cell width
+  static constexpr double kLog = 26.0;       // -ln of a cell's error bound (5e-12 of it)
+  static constexpr double kGrowth = 2.0;     // a graded piece's length / its distance from c
+  static constexpr int kFloorPoints = 8;
+  // A singularity within kSingular kNearEnd of a piece's end: the piece's first kNearEnd by
+  // tanh-sinh, which errs by ~exp(-2 pi w/h) of the singularity's share, w ~ (pi/2)/ln(width/
+  // distance): < 1e-13 of the cell for any distance (51 nodes where the grading takes 180 at
+  // 1e-9 of the cell).
+  static constexpr double kNearEnd = 0.05;
+  static constexpr double kSingular = 0.01;  // a ln|a| over a piece 1e-7 wide: ~1e-20 of the cell
+  static constexpr int kMaxPoints = 24;
+
+  // Gauss–Legendre rules of 1..kMaxPoints points.
+  static const std::vector<QuadratureNode>& rule(int n) {
+    static const std::vector<std::vector<QuadratureNode>> rules = [] {
+      std::vector<std::vector<QuadratureNode>> r(kMaxPoints + 1);
+      for (int k = 1; k <= kMaxPoints; ++k)
+        r[static_cast<std::size_t>(k)] = make_gauss_legendre_rule(k);
+      return r;
+    }();
+    return rules[static_cast<std::size_t>(n)];
+  }
+
+  // Points for an interval whose nearest singularity lies `distance` from it, at `length`: the
+  // Bernstein ellipse through a point that far beyond an end has parameter z + sqrt(z^2 - 1),
+  // and the analytic factor is multiplied by a cubic (sigma0 times x^2), which the rule's degree
+  // 2n - 1 must carry too.
+  static int points_for(double distance, double length, int least) {
+    const double z = 1.0 + 2.0 * distance / length;
+    return points_for_rho(z + std::sqrt((z - 1.0) * (z + 1.0)), least);
+  }
+  // The same for a singularity at (re, im) from the start of a piece of that length.
+  // The ellipse with foci +-1 through z has parameter rho = a + sqrt(a^2 - 1), a the half sum of
+  // the distances from z to the foci.
+  static int points_for(double re, double im, double length, int least) {
+    const double zr = (2.0 * re - length) / length, zi = 2.0 * im / length;
+    const double a =
+        0.5 * (std::sqrt((zr - 1) * (zr - 1) + zi * zi) + std::sqrt((zr + 1) * (zr + 1) + zi * zi));
+    return points_for_rho(a + std::sqrt((a - 1.0) * (a + 1.0)), least);
+  }
+  static int points_for_rho(double rho, int least) {
+    // The error of n points is ~ rho^-(2n - 3): the cubic factor takes three of the degrees.
+    const double n = std::ceil(0.5 * (kLog / std::log(rho) + 3.0));
+    return n < kMaxPoints ? std::max(least, static_cast<int>(n)) : kMaxPoints;
+  }
+
+  // A cell far from c: sigma0 {1, x, y} times the analytic direction field, by a product rule
+  // (degree 3 of the polynomial part in each variable, hence at least 2 points).
+  void far_cell(const Cell& c, double cx, double cy, double gap, double* acc) const {
+    const double hx = c.x1 - c.x0, hy = c.y1 - c.y0;
+    const std::vector<QuadratureNode>& rx = rule(points_for(gap, hx, 2));
+    const std::vector<QuadratureNode>& ry = rule(points_for(gap, hy, 2));
+    for (const QuadratureNode& gx : rx) {
+      const double x = c.x0 + hx * gx.from_left, a = x - cx;
+      const double lo = c.s[0] * gx.from_right + c.s[1] * gx.from_left;
+      const double hi = c.s[2] * gx.from_right + c.s[3] * gx.from_left;
+      double e0 = 0.0, e1 = 0.0, e2 = 0.0, f0 = 0.0, f1 = 0.0;  // ∫{1,y,y^2} e_x, ∫{1,y} e_y
+      for (const QuadratureNode& gy : ry) {
+        const double y = c.y0 + hy * gy.from_left, eta = y - cy;
+        const double w =
+            gy.weight * (lo * gy.from_right + hi * gy.from_left) / std::sqrt(a * a + eta * eta);
+        e0 -= w * eta;
+        e1 -= w * eta * y;
+        e2 -= w * eta * y * y;
+        f0 += w * a;
+        f1 += w * a * y;
+      }
+      add(acc, gx.weight * hx * hy, x, e0, e1, e2, f0, f1);
+    }
+  }
+
+  // sum W {ex: E0, x E0, E1; ey: F0, x F0, F1; x_ey: x F0, x^2 F0, x F1; y_ex: E1, x E1, E2}.
+  static void add(double* acc, double W, double x, double e0, double e1, double e2, double f0,
+                  double f1) {
+    acc[0] += W * e0;
+    acc[1] += W * x * e0;
+    acc[2] += W * e1;
+    acc[3] += W * f0;
+    acc[4] += W * x * f0;
+    acc[5] += W * f1;
+    acc[6] += W * x * f0;
+    acc[7] += W * x * x * f0;
+    acc[8] += W * x * f1;
+    acc[9] += W * e1;
+    acc[10] += W * x * e1;
+    acc[11] += W * e2;
+  }
+
+  // A cell near c: the y-integral in closed form at each x, x on graded pieces. gx, gy: the
+  // distances of c from the cell's x- and y-ranges.
+  void near_cell(const Cell& c, double cx, double cy, double gx, double gy, double* acc) const {
+    const double hx = c.x1 - c.x0;
+    const double eta0 = c.y0 - cy, eta1 = c.y1 - cy;
+    // Sides of c_x within the cell: each runs from p (the point of the cell nearest c_x) away.
+    if (cx > c.x0 && cx < c.x1) {
+      side(c, cy, eta0, eta1, cx, c.x1 - cx, +1.0, 0.0, gy, acc);
+      side(c, cy, eta0, eta1, cx, cx - c.x0, -1.0, 0.0, gy, acc);
+    } else if (cx <= c.x0) {
+      side(c, cy, eta0, eta1, c.x0, hx, +1.0, gx, gy, acc);
+    } else {
+      side(c, cy, eta0, eta1, c.x1, hx, -1.0, gx, gy, acc);
+    }
+  }
+
+  // x = p + dir t for t in [0, length]; the singularities lie `e` beyond p along x and `d` off
+  // the real axis (d = 0: c_y within the cell, a ln|a| at x = c_x).
+  void side(const Cell& c, double cy, double eta0, double eta1, double p, double length, double dir,
+            double e, double d, double* acc) const {
+    if (!(length > 0.0)) return;
+    const double hx = c.x1 - c.x0, H = c.y1 - c.y0;
+    auto piece = [&](double t, double len, const std::vector<QuadratureNode>& nodes) {
+      for (const QuadratureNode& g : nodes) {
+        const double off = t + len * g.from_left;  // from p, exact near p
+        const double x = p + dir * off;
+        const double a = dir * (off + e);  // x - c_x, exact next to c_x
+        const double tx = (x - c.x0) / hx;
+        const double lo = c.s[0] + (c.s[1] - c.s[0]) * tx;  // sigma0 at y0 and y1
+        const double hi = c.s[2] + (c.s[3] - c.s[2]) * tx;
+        strip(acc, g.weight * len, x, a, cy, eta0, eta1, H, lo, hi);
+      }
+    };
+    double t = 0.0;
+    if (std::sqrt(e * e + d * d) < kSingular * kNearEnd * length) {
+      // A singularity this close to p: tanh-sinh over [0, kNearEnd length] (its nodes crowd
+      // towards p double-exponentially), graded pieces beyond.
+      t = kNearEnd * length;
+      piece(0.0, t, radial_rule());
+    }
+    while (t < length) {
+      const double dist = std::sqrt((t + e) * (t + e) + d * d);
+      const bool floor = dist < kFloor * hx;
+      const double end = std::min(length, t + (floor ? kFloor * hx : kGrowth * dist));
+      const double len = end - t;
+      piece(t, len, rule(floor ? kFloorPoints : points_for(-e - t, d, len, 3)));
+      t = end;
+    }
+  }
+
+  // One x: the closed-form y-integrals over eta in [eta0, eta1] of sigma0 = lo + (hi - lo)
+  // (eta - eta0)/H.
+  static void strip(double* acc, double W, double x, double a, double cy, double eta0, double eta1,
+                    double H, double lo, double hi) {
+    const double a2 = a * a;
+    const double r0 = std::sqrt(a2 + eta0 * eta0), r1 = std::sqrt(a2 + eta1 * eta1);
+    // [rho] and [ln(eta + rho)] between the edges: log1p where both lie on one side of c_y.
+    const double D1 = H * (eta1 + eta0) / (r1 + r0);
+    double D0;
+    if (eta0 >= 0.0)
+      D0 = std::log1p((H + D1) / (eta0 + r0));
+    else if (eta1 <= 0.0)
+      D0 = std::log1p((H - D1) / (r1 - eta1));
+    else
+      D0 = a == 0.0 ? 0.0 : std::log((eta1 + r1) * (r0 - eta0) / a2);
+    const double aD0 = a == 0.0 ? 0.0 : a * D0;
+    const double a2D0 = a == 0.0 ? 0.0 : a2 * D0;
+    const double D2 = 0.5 * (eta1 * r1 - eta0 * r0 - a2D0);
+    const double D3 = D1 * ((r1 * r1 + r1 * r0 + r0 * r0) / 3.0 - a2);
+    const double D4 = 0.25 * (eta1 * eta1 * eta1 * r1 - eta0 * eta0 * eta0 * r0 - 3.0 * a2 * D2);
+    // sigma0 = A + B eta.
+    const double B = (hi - lo) / H, A = lo - B * eta0;
+    // ∫ sigma0 eta^k/rho, k = 1..3, and a ∫ sigma0 eta^k/rho, k = 0..1.
+    const double S1 = A * D1 + B * D2;          // ∫ sigma0 eta/rho
+    const double S2 = A * D2 + B * D3;          // ∫ sigma0 eta^2/rho
+    const double S3 = A * D3 + B * D4;          // ∫ sigma0 eta^3/rho
+    const double T0 = A * aD0 + B * a * D1;     // a ∫ sigma0/rho
+    const double T1 = A * a * D1 + B * a * D2;  // a ∫ sigma0 eta/rho
+    // y = eta + c_y.
+    const double e0 = -S1;
+    const double e1 = -(S2 + cy * S1);
+    const double e2 = -(S3 + 2.0 * cy * S2 + cy * cy * S1);
+    const double f0 = T0;
+    const double f1 = T1 + cy * T0;
+    add(acc, W, x, e0, e1, e2, f0, f1);
+  }
+
+  std::vector<double> x_, y_;
+  std::vector<Cell> cells_;
+};
+
+}  // namespace frictionid::model
