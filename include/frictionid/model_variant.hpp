@@ -89,18 +89,24 @@ inline std::shared_ptr<const model::RingIntegralTable> ring_table_for_rows(
   return rows >= kRingTableMinRows ? ring_table_for(kind, law, n, n_slope, {}, spot) : nullptr;
 }
 
-// Rows from which a tabulated spot (spot_integral_table.hpp) beats integrating every row: a
-// build costs about as much as 1000 rows integrated (0.05-0.4 s of CPU time).
+// Rows from which a tabulated spot (spot_integral_table.hpp) beats integrating every row: an
+// ellipse's or a rectangle's build costs about as much as 1000 rows integrated (0.05-0.4 s of
+// CPU time); a map's as much as 100,000 (3 s for a 13 x 9 map, whose rows integrate in 35 us).
 inline constexpr std::size_t kSpotTableMinRows = 2000;
+inline constexpr std::size_t kMapTableMinRows = 100000;
+
+inline std::size_t spot_table_min_rows(const model::ContactSpot& spot) {
+  return spot.kind == model::SpotKind::Map ? kMapTableMinRows : kSpotTableMinRows;
+}
 
 // The spot with its integrals tabulated for the exact variant at aspect q and exponent n (power
-// law; ignored otherwise): an ellipse or a rectangle, not the circle (the ring model) nor a map
-// (no table). `threads` as SpotIntegralTable's; `stop` may end the build early
+// law; ignored otherwise): an ellipse, a rectangle or a map, not the circle (the ring model).
+// `threads` as SpotIntegralTable's; `stop` may end the build early
 // (model::SpotTableBuildStopped).
 inline model::ContactSpot spot_with_table(ModelKind kind, const model::PressureLaw<double>& law,
                                           double q, double n, const model::ContactSpot& spot,
                                           const std::function<bool()>& stop = {}, int threads = 0) {
-  if (kind != ModelKind::Exact || !spot.has_aspect()) return spot;
+  if (kind != ModelKind::Exact || spot.kind == model::SpotKind::Circle) return spot;
   model::PressureLaw<double> at = law;
   if (at.kind == model::PressureKind::Power) at.n = n;
   if (spot.table && spot.table->matches(spot, q, at)) return spot;
@@ -113,7 +119,7 @@ inline model::ContactSpot spot_with_table(ModelKind kind, const model::PressureL
 inline model::ContactSpot spot_for_rows(ModelKind kind, const model::PressureLaw<double>& law,
                                         double q, double n, std::size_t rows,
                                         const model::ContactSpot& spot) {
-  return rows >= kSpotTableMinRows ? spot_with_table(kind, law, q, n, spot) : spot;
+  return rows >= spot_table_min_rows(spot) ? spot_with_table(kind, law, q, n, spot) : spot;
 }
 
 // Evaluates one variant for a fixed parameter vector; construct once, call per row.

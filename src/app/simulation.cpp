@@ -106,7 +106,10 @@ SimulationOutcome simulate(const SimulateRequest& r) {
       s.law.kind == model::PressureKind::Table
           ? ring_table_for(s.kind, s.law, s.params[kN], false, {}, s.contact)
           : nullptr,
-      nullptr, spot_with_table(s.kind, s.law, s.params[kQ], s.params[kN], s.contact));
+      nullptr,
+      s.contact.kind == model::SpotKind::Map
+          ? s.contact  // integrated cell by cell (35 us) rather than tabulated (3 s)
+          : spot_with_table(s.kind, s.law, s.params[kQ], s.params[kN], s.contact));
   const auto friction = [&eval](const model::Kinematics& k) { return eval(k); };
   const auto start = std::chrono::steady_clock::now();
   SimulationOutcome out;
