@@ -160,6 +160,7 @@ struct ShimmyRequest {
   std::string sweep_dir = ".";    // where shimmy.csv and shimmy.html go
   double onset_tol = 0.0;         // onset speeds to this [m/s]; 0: 1e-3 of the sweep's range
   bool progress = false;          // progress line on stderr (the command line sets it on a tty)
+  int table_directions = 0;       // > 0: the friction tabulated over the slip direction
 };
 
 }  // namespace frictionid::app

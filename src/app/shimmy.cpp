@@ -3,11 +3,13 @@
 #include <chrono>
 #include <cmath>
 #include <iterator>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include <frictionid/io/input_error.hpp>
 #include <frictionid/io/provenance.hpp>
+#include <frictionid/model/slip_direction_table.hpp>
 #include <frictionid/model_variant.hpp>
 #include "app/shimmy_report_model.hpp"
 #include "io/json_number.hpp"
@@ -57,13 +59,20 @@ void check(const ShimmyRequest& r) {
   require(r.stick_threshold >= 1e-12 && r.stick_threshold <= 1e-2,
           "--stick-threshold must be in [1e-12, 1e-2]");
   require(r.cycle_tol > 0.0 && r.cycle_tol <= 0.5, "--cycle-tol must be in (0, 0.5]");
+  require(r.table_directions == 0 || (r.table_directions >= 64 && r.table_directions <= 1 << 20),
+          "--table-directions must be 0 (the model itself) or from 64 to 1048576");
 }
 
 }  // namespace
 
 struct ShimmyCase::Friction {
-  ModelEvaluator<double> eval;
-  model::Resultants<double> operator()(const model::Kinematics& k) const { return eval(k); }
+  struct Model {
+    ModelEvaluator<double> eval;
+    model::Resultants<double> operator()(const model::Kinematics& k) const { return eval(k); }
+  };
+  explicit Friction(ModelEvaluator<double> e) : model{std::move(e)} {}
+  Model model;
+  std::unique_ptr<model::SlipDirectionTable<Model>> table;
 };
 
 ShimmyCase::ShimmyCase(const ShimmyRequest& r) {
@@ -90,14 +99,19 @@ ShimmyCase::ShimmyCase(const ShimmyRequest& r) {
                                                   : model::ShimmyContactLaw::Friction;
   start_.y = wheel_.rigid_lateral ? 0.0 : r.y0;
   start_.psi = r.psi0;
+  table_directions_ = r.table_directions;
   // A tabulated law is integrated from its ring-integral table, as simulate does.
   const ModelSetup& s = setup_;
-  friction_ = std::make_unique<Friction>(Friction{
+  friction_ = std::make_unique<Friction>(
       ModelEvaluator<double>(s.kind, s.law, s.params.data(),
                              s.law.kind == model::PressureKind::Table
                                  ? ring_table_for(s.kind, s.law, s.params[kN], false, {}, s.contact)
                                  : nullptr,
-                             nullptr, s.contact)});
+                             nullptr, s.contact));
+  // --table-directions: the friction at v_x = 0 over the slip direction, built once.
+  if (r.table_directions > 0)
+    friction_->table = std::make_unique<model::SlipDirectionTable<Friction::Model>>(
+        friction_->model, wheel_.N, wheel_.R, r.table_directions);
 }
 
 ShimmyCase::~ShimmyCase() = default;
@@ -105,7 +119,9 @@ ShimmyCase::~ShimmyCase() = default;
 model::ShimmyRun ShimmyCase::run(const model::ShimmyWheel& wheel, const model::ShimmyStart& start,
                                  const model::ShimmySettings& settings,
                                  const std::function<void(const model::ShimmyRow&)>& row) const {
-  return model::simulate_shimmy(*friction_, wheel, start, settings, row);
+  if (friction_->table)
+    return model::simulate_shimmy(*friction_->table, wheel, start, settings, row);
+  return model::simulate_shimmy(friction_->model, wheel, start, settings, row);
 }
 
 nlohmann::ordered_json ShimmyCase::description(const model::ShimmyWheel& w) const {
@@ -126,7 +142,9 @@ nlohmann::ordered_json ShimmyCase::description(const model::ShimmyWheel& w) cons
       {"lateral_damping", w.c_y},
       {"y0", start_.y},
       {"psi0", start_.psi},
-      {"duration", settings_.duration}});
+      {"duration", settings_.duration},
+      {"table_directions", friction_->table ? nlohmann::ordered_json(table_directions_)
+                                            : nlohmann::ordered_json(nullptr)}});
   return j;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,7 @@ class ShimmyCase {
   model::ShimmyWheel wheel_;
   model::ShimmySettings settings_;
   model::ShimmyStart start_;
+  int table_directions_ = 0;
   std::unique_ptr<Friction> friction_;
 };
 

@@ -364,6 +364,9 @@ void add_shimmy(CLI::App& app, ShimmyRequest& o, Texts& t) {
                 "onset speeds by bisection to this [m/s] (0: 1e-3 of the sweep's range)")
       ->capture_default_str();
   c->add_flag("--progress", o.progress, "progress line on stderr (default: when it is a terminal)");
+  add_whole_number(c, "--table-directions", o.table_directions, 0, 1 << 20,
+                   "tabulate the friction over this many slip directions (0: the model itself; "
+                   "e.g. 4096 for the exact model's speed)");
 }
 
 // A fit allocates and frees arrays of every row again and again (dataset copies, residuals,
