@@ -179,6 +179,8 @@ nlohmann::ordered_json run_json(const model::ShimmyRun& run) {
                               (x[model::kSContactWork] - x[model::kSDamping])}}},
       {"first_switch", json_number(run.first_switch >= 0.0 ? run.first_switch : HUGE_VAL)},
       {"stick_phases", run.stick_phases},
+      {"largest_projected_slip", run.largest_projected_slip},
+      {"forced_switches", run.forced_switches},
       {"slip_starts", run.slip_starts},
       {"steps", run.steps},
       {"rejected_steps", run.rejected},

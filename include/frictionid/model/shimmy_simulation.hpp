@@ -98,7 +98,9 @@ struct ShimmyRun {
   CycleEstimate cycle;
   bool in_stick = false;  // the run ended in a stick phase
   double energy_initial = 0.0, energy_final = 0.0;
-  double impulse_work = 0.0;   // the part of the contact work from projections and seeds
+  double impulse_work = 0.0;            // the part of the contact work from projections and seeds
+  double largest_projected_slip = 0.0;  // max |s|/s_ref where a slip phase was ended
+  long forced_switches = 0;    // slip phases ended because the step could not shrink further
   double first_switch = -1.0;  // the end of the first slip phase (-1: none)
   long steps = 0, rejected = 0, evaluations = 0, stick_phases = 0, slip_starts = 0;
   bool step_limit = false;  // max_steps reached
@@ -232,6 +234,7 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
   double last_seed_t = -1.0;
   const auto at_zero_slip = [&]() -> bool {
     if (run.first_switch < 0.0) run.first_switch = t;
+    run.largest_projected_slip = std::max(run.largest_projected_slip, s_norm(x) / sc.slip);
     ShimmyState p = x;
     p[kSPsiDot] = 0.0;
     if (w.rigid_lateral)
@@ -366,6 +369,7 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
       last_rejected = true;
       if (h <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(t, 1.0 / sc.rate)) {
         // The step cannot shrink further: s is at its zero however small it still is.
+        if (!nonholonomic) ++run.forced_switches;
         if (!nonholonomic && at_zero_slip()) {
           stick_phase();
         }
