@@ -10,7 +10,8 @@
 // The switch: when |s| <= stick_threshold s_ref the state is projected onto s = 0 (psi' = 0,
 // y' = V tan psi; a rigid strut: psi = 0) and the cohesion test (10.3) decides: the constraint
 // loads of the stick phase inside the friction limit -> stick; else slip starts again in the
-// direction (10.4) in which the excess load drives it (s seeded at 4 stick_threshold s_ref).
+// direction (10.4) in which the excess load drives it (the friction of that direction held until
+// |s| has grown past the threshold).
 // Stick: psi stays, y drifts at y' = V tan psi, the constraint loads are affine in y; the phase
 // ends where the cohesion margin crosses zero (bisection in y), in closed form otherwise.
 // The small velocity changes of the projections and seeds are charged to the contact work (they
@@ -173,10 +174,17 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
           : ShimmyLimitCurve(friction, w.N, w.R);
   const double force_scale = nonholonomic ? 1.0 : std::max(curve.scale(), 1e-300);
 
+  // A slip that starts from s = 0 has the direction theta* of (10.4) until it has grown past the
+  // threshold: the friction is taken there, not from the direction of a slip still at rounding
+  // level (held < 0: none).
+  double held = -1.0;
+  double s_hold = 0.0;
+  int collapses = 0;  // held slips that fell back to zero in a row
   const auto forces_of = [&](const ShimmyState& s) {
     ++run.evaluations;
     if (nonholonomic) return nonholonomic_forces(w, s);
     const auto sl = spot_slip(w, s);
+    if (held >= 0.0 && std::hypot(sl[0], sl[1]) <= s_hold) return curve.at(friction, held);
     const Resultants<double> r = friction(Kinematics{0.0, sl[0], s[kSPsiDot], w.N, w.R});
     return ContactForces{r.T_x, r.T_y, r.M_z};
   };
@@ -229,7 +237,26 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
   // The cohesion test's tolerance: within stick_threshold of s = 0 the loads are known to about
   // that fraction of the friction; a stick phase ends at twice it outside (hysteresis).
   const double eta_enter = set.stick_threshold * force_scale;
-  // At |s| ~ 0: project, test cohesion, and either stick (return true) or seed the slip.
+  // Slip from s = 0 in direction th: the friction of th is held while |s| <= s_stick. Should the
+  // slip fall back to zero, or a step from it not be taken (the direction of (10.4) not quite
+  // found), the next start is seeded instead: s set to 4 s_stick 2^k along th (k: starts at this
+  // instant), the velocity change an impulse.
+  const auto start_slip = [&](double th, bool seed, int repeats) {
+    ++run.slip_starts;
+    if (!seed) {
+      held = th;
+      s_hold = s_stick;
+      return;
+    }
+    held = -1.0;
+    const double s_seed = 4.0 * s_stick * (1 << std::min(repeats, 10));
+    ShimmyState q = x;
+    q[kSPsiDot] = s_seed * std::sin(th) / w.R;
+    q[kSYDot] = (s_seed * std::cos(th) + w.V * std::sin(q[kSPsi]) + w.caster * q[kSPsiDot]) /
+                std::cos(q[kSPsi]);
+    impulse(q);
+  };
+  // At |s| ~ 0: project, test cohesion, and either stick (return true) or start the slip.
   int seeds_here = 0;
   double last_seed_t = -1.0;
   const auto at_zero_slip = [&]() -> bool {
@@ -250,13 +277,7 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
     seeds_here = t - last_seed_t <= 1e-12 * std::max(T, 1.0) ? seeds_here + 1 : 0;
     last_seed_t = t;
     const double th = slip_start_direction(friction, curve, w, x, m.theta);
-    const double s_seed = 4.0 * s_stick * (1 << std::min(seeds_here, 6));
-    ShimmyState q = x;
-    q[kSPsiDot] = s_seed * std::sin(th) / w.R;
-    q[kSYDot] = (s_seed * std::cos(th) + w.V * std::sin(q[kSPsi]) + w.caster * q[kSPsiDot]) /
-                std::cos(q[kSPsi]);
-    impulse(q);
-    ++run.slip_starts;
+    start_slip(th, collapses > 0, seeds_here);
     return false;
   };
 
@@ -315,14 +336,7 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
     stick = false;
     const ContactForces W = stick_forces(w, x);
     const auto m = curve.margin(friction, W);
-    const double th = slip_start_direction(friction, curve, w, x, m.theta);
-    ShimmyState q = x;
-    const double s_seed = 4.0 * s_stick;
-    q[kSPsiDot] = s_seed * std::sin(th) / w.R;
-    q[kSYDot] = (s_seed * std::cos(th) + w.V * std::sin(q[kSPsi]) + w.caster * q[kSPsiDot]) /
-                std::cos(q[kSPsi]);
-    impulse(q);
-    ++run.slip_starts;
+    start_slip(slip_start_direction(friction, curve, w, x, m.theta), false, 0);
   };
 
   // Slip is where the run starts unless s = 0 already.
@@ -342,6 +356,7 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
   const double h_max = 0.05 / sc.rate;
   double h = std::min(1e-3 / sc.rate, h_max);
   bool last_rejected = false;
+  double held_start_slip = 0.0;  // |s| after the last step while the direction is held
   while (!done && t < T) {
     if (run.steps + run.rejected >= set.max_steps) {
       run.step_limit = true;
@@ -369,10 +384,15 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
       last_rejected = true;
       if (h <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(t, 1.0 / sc.rate)) {
         // The step cannot shrink further: s is at its zero however small it still is.
-        if (!nonholonomic) ++run.forced_switches;
+        if (!nonholonomic) {
+          ++run.forced_switches;
+          ++collapses;  // a held start that cannot be followed: seed the next one
+          held = -1.0;
+        }
         if (!nonholonomic && at_zero_slip()) {
           stick_phase();
         }
+        held_start_slip = 0.0;
         f = rhs(t, x);
         h = 1e-6 / sc.rate;
       }
@@ -408,8 +428,18 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
     if (last_rejected) factor = std::min(1.0, factor);
     last_rejected = false;
     h *= factor;
-    if (!nonholonomic && s_norm(x) <= s_stick) {
+    const double sn = nonholonomic ? 0.0 : s_norm(x);
+    const bool fell_back = held >= 0.0 && sn < held_start_slip;
+    if (held >= 0.0 && sn > s_hold) {
+      held = -1.0;  // the slip has its own direction now
+      collapses = 0;
+    }
+    held_start_slip = sn;
+    if (!nonholonomic && (fell_back || (held < 0.0 && sn <= s_stick))) {
+      collapses = fell_back ? collapses + 1 : 0;
+      held = -1.0;
       if (at_zero_slip()) stick_phase();
+      held_start_slip = 0.0;
       if (!done) {
         f = rhs(t, x);
         h = std::min(h, 1e-6 / sc.rate);
