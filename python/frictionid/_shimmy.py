@@ -36,6 +36,7 @@ def shimmy(
     tol: float = 1e-10,
     stick_threshold: float = 1e-5,
     cycle_tol: float = 1e-3,
+    table_directions: int = 0,
 ) -> Tuple["pandas.DataFrame", Dict[str, Any]]:
     """A towed wheel or nose landing gear under the model's friction, as ``frictionid shimmy``
     (docs/physics.md §10): the king pin moves at ``speed`` V and sideways by y (strut
@@ -50,7 +51,8 @@ def shimmy(
             ``nonholonomic`` (Keldysh's no-slip u_y = 0).
         psi0, y0: the start (velocities 0); duration [s]; output_step: rows at k*output_step
             from the dense output (0: every integrator step).
-        tol, stick_threshold, cycle_tol: as the command line's options.
+        tol, stick_threshold, cycle_tol, table_directions: as the command line's options
+            (table_directions 4096 makes the exact model 20-50x faster, within ~1e-8).
 
     Returns:
         (trajectory, summary): a pandas DataFrame of t, y, y_dot, psi, psi_dot, u_y, T_y, M_z
@@ -62,7 +64,7 @@ def shimmy(
                    lateral_mass=lateral_mass, lateral_stiffness=lateral_stiffness,
                    lateral_damping=lateral_damping, psi0=psi0, y0=y0, duration=duration,
                    output_step=output_step, tol=tol, stick_threshold=stick_threshold,
-                   cycle_tol=cycle_tol)
+                   cycle_tol=cycle_tol, table_directions=table_directions)
     text = dict(model=model, pressure="hertz" if pressure is None else pressure,
                 contact=contact, lateral=lateral, contact_law=contact_law)
     if from_report is not None:

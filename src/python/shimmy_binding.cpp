@@ -2,6 +2,8 @@
 // integration, returned as the summary and the trajectory's columns.
 #include <pybind11/stl.h>
 
+#include <cmath>
+
 #include <frictionid/io/input_error.hpp>
 #include "app/shimmy.hpp"
 #include "python/bindings.hpp"
@@ -50,6 +52,12 @@ py::dict shimmy(const app::ParameterValues& params, const std::map<std::string, 
                                                {"stick_threshold", &r.stick_threshold},
                                                {"cycle_tol", &r.cycle_tol}};
   for (const auto& [name, value] : options) {
+    if (name == "table_directions") {
+      if (!(value >= 0.0 && value <= 1048576.0) || value != std::floor(value))
+        throw InputError("table_directions must be a whole number from 0 to 1048576");
+      r.table_directions = static_cast<int>(value);
+      continue;
+    }
     const auto it = numbers.find(name);
     if (it == numbers.end()) throw InputError("shimmy(): unknown option '" + name + "'");
     *it->second = value;

@@ -36,3 +36,14 @@ def test_shimmy_rejects_bad_input():
         frictionid.shimmy("corrected", "uniform", {"f": 0.8}, yaw_inertia=0)
     with pytest.raises(frictionid.InputError, match="--lateral"):
         frictionid.shimmy("corrected", "uniform", {"f": 0.8}, lateral="floppy")
+
+
+def test_shimmy_with_a_direction_table_follows_the_model():
+    kw = dict(WHEEL, speed=20, duration=0.2, output_step=0.01)
+    plain, first = frictionid.shimmy("exact", "hertz", {"f": 0.8}, **kw)
+    tabled, summary = frictionid.shimmy("exact", "hertz", {"f": 0.8}, table_directions=4096, **kw)
+    assert summary["table_directions"] == 4096
+    # Through the first slip phase (after it, events amplify differences to the stick threshold).
+    slip = plain.t < first["first_switch"]
+    assert slip.sum() > 3
+    assert (plain.psi[slip] - tabled.psi[slip]).abs().max() < 1e-8 * 0.05
