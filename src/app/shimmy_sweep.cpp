@@ -231,7 +231,31 @@ std::string sweep_html(const SweepResult& s, const std::string& title) {
             svg::tick_label(o.hi) + "</td><td>" + (o.shimmy_above ? "above" : "below") +
             "</td></tr>\n";
   }
-  page += "</table>\n<h2>Runs</h2>\n<table><tr><th>V [m/s]</th>";
+  page += "</table>\n";
+  if (!s.param_name.empty()) {
+    // The 2-D map: one row per parameter value, one column per speed; shimmy cells shaded.
+    std::vector<double> speeds;
+    for (const auto& p : s.points)
+      if (p.param == values.front()) speeds.push_back(p.speed);
+    page +=
+        "<h2>Map</h2>\n<p>Amplitude of psi [rad]; shaded: shimmy (limit cycle or growing), "
+        "blank: stable.</p>\n<table><tr><th>" +
+        svg::escape(s.param_name) + " \\ V [m/s]</th>";
+    for (double v : speeds) page += "<th>" + svg::tick_label(v) + "</th>";
+    page += "</tr>\n";
+    for (double value : values) {
+      page += "<tr><th>" + svg::tick_label(value) + "</th>";
+      for (const auto& p : s.points) {
+        if (p.param != value) continue;
+        page += p.shimmy
+                    ? "<td style=\"background:#f4b6b6\">" + svg::tick_label(p.amplitude) + "</td>"
+                    : std::string("<td></td>");
+      }
+      page += "</tr>\n";
+    }
+    page += "</table>\n";
+  }
+  page += "<h2>Runs</h2>\n<table><tr><th>V [m/s]</th>";
   if (!s.param_name.empty()) page += "<th>" + svg::escape(s.param_name) + "</th>";
   page += "<th>outcome</th><th>amplitude [rad]</th><th>frequency [Hz]</th></tr>\n";
   for (const auto& p : s.points) {
