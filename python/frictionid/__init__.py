@@ -8,9 +8,9 @@ The same C++ code as the ``frictionid`` command line, so the same numbers and me
 >>> print(result.summary())
 
 Functions: :func:`fit` (-> :class:`FitResult`), :func:`evaluate`, :func:`coefficients`,
-:func:`generate`, :func:`simulate`. Bad input raises :class:`InputError` (a ``ValueError``), a
-fit that fails raises :class:`FitError`, Ctrl-C during a fit raises ``KeyboardInterrupt``, a
-fit stopped by its :class:`CancelToken` raises :class:`FitCancelled`.
+:func:`generate`, :func:`simulate`, :func:`shimmy`. Bad input raises :class:`InputError` (a
+``ValueError``), a fit that fails raises :class:`FitError`, Ctrl-C during a fit raises
+``KeyboardInterrupt``, a fit stopped by its :class:`CancelToken` raises :class:`FitCancelled`.
 """
 
 import atexit
@@ -20,6 +20,7 @@ from ._frictionid import CancelToken, FitCancelled, FitError, InputError, cancel
 from ._fit import fit
 from ._model import coefficients, evaluate, generate, simulate
 from ._result import FitResult
+from ._shimmy import shimmy
 from ._version import __version__
 
 InputError.__module__ = FitError.__module__ = FitCancelled.__module__ = __name__
@@ -51,6 +52,7 @@ __all__ = [
     "evaluate",
     "fit",
     "generate",
+    "shimmy",
     "simulate",
     "__version__",
 ]

@@ -137,4 +137,30 @@ struct SimulateRequest {
   bool trajectory = false;  // record every accepted step (implied by output)
 };
 
+// frictionid shimmy: a towed wheel or nose gear under a model's friction (docs/physics.md §10).
+struct ShimmyRequest {
+  ModelRequest model{"exact", "hertz", {}};
+  std::string from_report;  // report.json of a fit: its model, law, spot and parameters
+  double N = 1000.0, R = 0.05;
+  double speed = 10.0, caster = 0.1;
+  double yaw_inertia = 1.0, yaw_stiffness = 1e4, yaw_damping = 0.0;
+  double lateral_mass = 10.0, lateral_stiffness = 1e5, lateral_damping = 0.0;
+  std::string lateral = "elastic";       // or "rigid": y = 0 throughout
+  std::string contact_law = "friction";  // or "nonholonomic": Keldysh's no-slip u_y = 0
+  double psi0 = 0.0, y0 = 0.0;
+  double duration = 2.0;
+  std::string output;        // trajectory CSV (command line)
+  double output_step = 0.0;  // > 0: rows at k output_step from dense output
+  bool trajectory = false;   // keep the rows in the outcome (Python)
+  double tol = 1e-10;        // the integrator's relative and (per state scale) absolute tolerance
+  double stick_threshold = 1e-5;  // |s| below this fraction of its scale: the cohesion test
+  double cycle_tol = 1e-3;        // relative amplitude change per cycle of a limit cycle
+  std::string speed_sweep;        // A:B:N
+  std::string sweep_param;        // yaw-damping:A:B:N or caster:A:B:N
+  std::string sweep_dir = ".";    // where shimmy.csv and shimmy.html go
+  double onset_tol = 0.0;         // onset speeds to this [m/s]; 0: 1e-3 of the sweep's range
+  bool progress = false;          // progress line on stderr (the command line sets it on a tty)
+  int table_directions = 0;       // > 0: the friction tabulated over the slip direction
+};
+
 }  // namespace frictionid::app

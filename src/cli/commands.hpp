@@ -14,5 +14,6 @@ int run_fit(const app::FitRequest& r);
 int run_compare(const app::CompareRequest& r);
 int run_batch(const app::BatchRequest& r);
 int run_simulate(const app::SimulateRequest& r);
+int run_shimmy(const app::ShimmyRequest& r);
 
 }  // namespace frictionid::cli

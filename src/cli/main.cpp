@@ -76,6 +76,7 @@ struct Texts {
   std::string compare_contacts = "circle";
   std::string group_by, shared;
   std::string simulate_params;
+  std::string shimmy_params;
 };
 
 void add_coefficients(CLI::App& app, CoefficientsRequest& o, std::string& format) {
@@ -302,6 +303,72 @@ void add_simulate(CLI::App& app, SimulateRequest& o, Texts& t) {
   c->add_option("--max-steps", o.max_steps, "step limit")->capture_default_str();
 }
 
+void add_shimmy(CLI::App& app, ShimmyRequest& o, Texts& t) {
+  auto* c = app.add_subcommand(
+      "shimmy", "Shimmy of a towed wheel or nose gear under a model's friction (physics §10)");
+  c->add_option("--model", o.model.model, "seed, corrected or exact")->capture_default_str();
+  c->add_option("--pressure", o.model.pressure, kLawHelp)->capture_default_str();
+  c->add_option("--contact", o.model.contact, kContactHelp)->capture_default_str();
+  c->add_option("--param", t.shimmy_params,
+                "friction parameters f=..,kappa=..,h=..[,a=..,...] as eval");
+  c->add_option("--from-report", o.from_report,
+                "report.json of a fit: its model, pressure, contact and parameters (no --param)");
+  c->add_option("--N", o.N, "normal load [N]")->capture_default_str();
+  c->add_option("--R", o.R, "contact radius [m]")->capture_default_str();
+  c->add_option("--speed", o.speed, "forward speed V of the king pin [m/s]")->capture_default_str();
+  c->add_option("--caster", o.caster, "caster e: the contact trails the king pin by e [m]")
+      ->capture_default_str();
+  c->add_option("--yaw-inertia", o.yaw_inertia, "yaw inertia J of the fork [kg m^2]")
+      ->capture_default_str();
+  c->add_option("--yaw-stiffness", o.yaw_stiffness, "torsional stiffness k_psi [N m/rad]")
+      ->capture_default_str();
+  c->add_option("--yaw-damping", o.yaw_damping, "torsional damping c_psi [N m s/rad]")
+      ->capture_default_str();
+  c->add_option("--lateral-mass", o.lateral_mass, "lateral mass m_y of the strut [kg]")
+      ->capture_default_str();
+  c->add_option("--lateral-stiffness", o.lateral_stiffness, "lateral stiffness k_y [N/m]")
+      ->capture_default_str();
+  c->add_option("--lateral-damping", o.lateral_damping, "lateral damping c_y [N s/m]")
+      ->capture_default_str();
+  c->add_option("--lateral", o.lateral, "elastic, or rigid (y = 0)")
+      ->check(CLI::IsMember({"elastic", "rigid"}))
+      ->capture_default_str();
+  c->add_option("--contact-law", o.contact_law,
+                "friction (the model), or nonholonomic (Keldysh's no-slip u_y = 0)")
+      ->check(CLI::IsMember({"friction", "nonholonomic"}))
+      ->capture_default_str();
+  c->add_option("--psi0", o.psi0, "initial yaw angle [rad]")->capture_default_str();
+  c->add_option("--y0", o.y0, "initial lateral displacement [m]")->capture_default_str();
+  c->add_option("--duration", o.duration, "time to integrate [s]")->capture_default_str();
+  c->add_option("--output", o.output,
+                std::string("trajectory CSV: t,y,y_dot,psi,psi_dot,u_y,T_y,M_z") + kOutputNote);
+  c->add_option("--output-step", o.output_step,
+                "rows at k*DT from the dense output (0: every integrator step)")
+      ->capture_default_str();
+  c->add_option("--tol", o.tol, "integrator tolerance (relative, and absolute per state scale)")
+      ->capture_default_str();
+  c->add_option("--stick-threshold", o.stick_threshold,
+                "slip below this fraction of its scale ends a slip phase (the cohesion test)")
+      ->capture_default_str();
+  c->add_option("--cycle-tol", o.cycle_tol, "relative amplitude change per cycle of a limit cycle")
+      ->capture_default_str();
+  c->add_option("--speed-sweep", o.speed_sweep,
+                "A:B:N: N speeds, each continued from the last limit cycle; writes "
+                "DIR/shimmy.csv and DIR/shimmy.html");
+  c->add_option("--sweep-param", o.sweep_param,
+                "NAME:A:B:M with --speed-sweep: repeat it for M values of yaw-damping, caster, "
+                "yaw-stiffness or lateral-damping (a 2-D map)");
+  c->add_option("--sweep-dir", o.sweep_dir, "directory of shimmy.csv and shimmy.html")
+      ->capture_default_str();
+  c->add_option("--onset-tol", o.onset_tol,
+                "onset speeds by bisection to this [m/s] (0: 1e-3 of the sweep's range)")
+      ->capture_default_str();
+  c->add_flag("--progress", o.progress, "progress line on stderr (default: when it is a terminal)");
+  add_whole_number(c, "--table-directions", o.table_directions, 0, 1 << 20,
+                   "tabulate the friction over this many slip directions (0: the model itself; "
+                   "e.g. 4096 for the exact model's speed)");
+}
+
 // A fit allocates and frees arrays of every row again and again (dataset copies, residuals,
 // predictions). Above glibc's mmap threshold each would come fresh from the kernel and fault in
 // page by page, a fifth of a 1e5-row fit; kept in the heap, freed blocks are reused.
@@ -343,6 +410,8 @@ int main(int argc, char** argv) {
   add_compare(app, compare, texts);
   SimulateRequest simulate;
   add_simulate(app, simulate, texts);
+  ShimmyRequest shimmy;
+  add_shimmy(app, shimmy, texts);
   BatchRequest batch;
   add_batch(app, batch, texts);
 
@@ -390,6 +459,7 @@ int main(int argc, char** argv) {
   fit.pressure_given = pressure_given("fit");
   compare.fit.pressure_given = pressure_given("compare");
   simulate.model.pressure_given = pressure_given("simulate");
+  shimmy.model.pressure_given = pressure_given("shimmy");
   batch.fit.pressure_given = pressure_given("batch");
 
   try {
@@ -419,6 +489,10 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("simulate")) {
       simulate.model.params = parameter_values(texts.simulate_params);
       return run_simulate(simulate);
+    }
+    if (app.got_subcommand("shimmy")) {
+      shimmy.model.params = parameter_values(texts.shimmy_params);
+      return run_shimmy(shimmy);
     }
     if (app.got_subcommand("batch")) {
       batch.group_by = name_list("--group-by", texts.group_by);

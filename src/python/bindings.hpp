@@ -19,6 +19,7 @@ void register_fit(pybind11::module_& m);       // datasets, FitOptions, fit, Fit
 void register_evaluate(pybind11::module_& m);  // evaluate, coefficients
 void register_generate(pybind11::module_& m);  // synthetic datasets
 void register_simulate(pybind11::module_& m);  // the sliding-spinning body
+void register_shimmy(pybind11::module_& m);    // the towed wheel
 void register_batch(pybind11::module_& m);     // `frictionid batch` run by run (Dask)
 
 }  // namespace frictionid::python

@@ -31,5 +31,6 @@ PYBIND11_MODULE(_frictionid, m) {
   frictionid::python::register_evaluate(m);
   frictionid::python::register_generate(m);
   frictionid::python::register_simulate(m);
+  frictionid::python::register_shimmy(m);
   frictionid::python::register_batch(m);
 }

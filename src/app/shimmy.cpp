@@ -1,0 +1,213 @@
+#include "app/shimmy.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <iterator>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include <frictionid/io/input_error.hpp>
+#include <frictionid/io/provenance.hpp>
+#include <frictionid/model/slip_direction_table.hpp>
+#include <frictionid/model_variant.hpp>
+#include "app/shimmy_report_model.hpp"
+#include "io/json_number.hpp"
+
+namespace frictionid::app {
+
+namespace {
+
+void require(bool ok, const std::string& message) {
+  if (!ok) throw InputError(message);
+}
+
+void positive(double x, const char* option) {
+  require(std::isfinite(x) && x > 0.0, fmt::format("{} must be a finite number > 0", option));
+}
+
+void non_negative(double x, const char* option) {
+  require(std::isfinite(x) && x >= 0.0, fmt::format("{} must be a finite number >= 0", option));
+}
+
+void check(const ShimmyRequest& r) {
+  positive(r.N, "--N");
+  positive(r.R, "--R");
+  positive(r.speed, "--speed");
+  positive(r.duration, "--duration");
+  positive(r.yaw_inertia, "--yaw-inertia");
+  positive(r.lateral_mass, "--lateral-mass");
+  non_negative(r.yaw_stiffness, "--yaw-stiffness");
+  non_negative(r.yaw_damping, "--yaw-damping");
+  non_negative(r.lateral_stiffness, "--lateral-stiffness");
+  non_negative(r.lateral_damping, "--lateral-damping");
+  require(std::isfinite(r.caster), "--caster must be a finite number [m]");
+  require(std::isfinite(r.y0), "--y0 must be a finite number [m]");
+  require(std::isfinite(r.psi0) && std::fabs(r.psi0) < 0.5 * M_PI,
+          "--psi0 must be a finite angle with |psi0| < pi/2 [rad]");
+  require(r.lateral == "elastic" || r.lateral == "rigid",
+          "--lateral '" + r.lateral + "': expected elastic or rigid");
+  require(r.contact_law == "friction" || r.contact_law == "nonholonomic",
+          "--contact-law '" + r.contact_law + "': expected friction or nonholonomic");
+  require(!(r.contact_law == "nonholonomic" && r.lateral == "rigid" && r.caster == 0.0),
+          "--contact-law nonholonomic with --lateral rigid needs --caster != 0 (psi' = -V sin "
+          "psi / e)");
+  non_negative(r.output_step, "--output-step");
+  require(r.output_step == 0.0 || r.duration / r.output_step <= 1e8,
+          "--output-step gives more than 1e8 rows over --duration");
+  require(r.tol >= 1e-14 && r.tol <= 1e-3, "--tol must be in [1e-14, 1e-3]");
+  require(r.stick_threshold >= 1e-12 && r.stick_threshold <= 1e-2,
+          "--stick-threshold must be in [1e-12, 1e-2]");
+  require(r.cycle_tol > 0.0 && r.cycle_tol <= 0.5, "--cycle-tol must be in (0, 0.5]");
+  require(r.table_directions == 0 || (r.table_directions >= 64 && r.table_directions <= 1 << 20),
+          "--table-directions must be 0 (the model itself) or from 64 to 1048576");
+}
+
+}  // namespace
+
+struct ShimmyCase::Friction {
+  struct Model {
+    ModelEvaluator<double> eval;
+    model::Resultants<double> operator()(const model::Kinematics& k) const { return eval(k); }
+  };
+  explicit Friction(ModelEvaluator<double> e) : model{std::move(e)} {}
+  Model model;
+  std::unique_ptr<model::SlipDirectionTable<Model>> table;
+};
+
+ShimmyCase::ShimmyCase(const ShimmyRequest& r) {
+  setup_ = make_model_setup(shimmy_model_request(r));
+  check(r);
+  wheel_.V = r.speed;
+  wheel_.caster = r.caster;
+  wheel_.J = r.yaw_inertia;
+  wheel_.k_psi = r.yaw_stiffness;
+  wheel_.c_psi = r.yaw_damping;
+  wheel_.m_y = r.lateral_mass;
+  wheel_.k_y = r.lateral_stiffness;
+  wheel_.c_y = r.lateral_damping;
+  wheel_.rigid_lateral = r.lateral == "rigid";
+  wheel_.N = r.N;
+  wheel_.R = r.R;
+  settings_.duration = r.duration;
+  settings_.rtol = settings_.atol = r.tol;
+  settings_.output_step = r.output_step;
+  settings_.record = r.trajectory || !r.output.empty();
+  settings_.stick_threshold = r.stick_threshold;
+  settings_.cycle_tol = r.cycle_tol;
+  settings_.law = r.contact_law == "nonholonomic" ? model::ShimmyContactLaw::Nonholonomic
+                                                  : model::ShimmyContactLaw::Friction;
+  start_.y = wheel_.rigid_lateral ? 0.0 : r.y0;
+  start_.psi = r.psi0;
+  table_directions_ = r.table_directions;
+  // A tabulated law is integrated from its ring-integral table, as simulate does.
+  const ModelSetup& s = setup_;
+  friction_ = std::make_unique<Friction>(
+      ModelEvaluator<double>(s.kind, s.law, s.params.data(),
+                             s.law.kind == model::PressureKind::Table
+                                 ? ring_table_for(s.kind, s.law, s.params[kN], false, {}, s.contact)
+                                 : nullptr,
+                             nullptr, s.contact));
+  // --table-directions: the friction at v_x = 0 over the slip direction, built once.
+  if (r.table_directions > 0)
+    friction_->table = std::make_unique<model::SlipDirectionTable<Friction::Model>>(
+        friction_->model, wheel_.N, wheel_.R, r.table_directions);
+}
+
+ShimmyCase::~ShimmyCase() = default;
+
+model::ShimmyRun ShimmyCase::run(const model::ShimmyWheel& wheel, const model::ShimmyStart& start,
+                                 const model::ShimmySettings& settings,
+                                 const std::function<void(const model::ShimmyRow&)>& row) const {
+  if (friction_->table)
+    return model::simulate_shimmy(*friction_->table, wheel, start, settings, row);
+  return model::simulate_shimmy(friction_->model, wheel, start, settings, row);
+}
+
+nlohmann::ordered_json ShimmyCase::description(const model::ShimmyWheel& w) const {
+  nlohmann::ordered_json j = model_json(setup_);
+  j.update(nlohmann::ordered_json{
+      {"contact_law",
+       settings_.law == model::ShimmyContactLaw::Nonholonomic ? "nonholonomic" : "friction"},
+      {"N", w.N},
+      {"R", w.R},
+      {"speed", w.V},
+      {"caster", w.caster},
+      {"yaw_inertia", w.J},
+      {"yaw_stiffness", w.k_psi},
+      {"yaw_damping", w.c_psi},
+      {"lateral", w.rigid_lateral ? "rigid" : "elastic"},
+      {"lateral_mass", w.m_y},
+      {"lateral_stiffness", w.k_y},
+      {"lateral_damping", w.c_y},
+      {"y0", start_.y},
+      {"psi0", start_.psi},
+      {"duration", settings_.duration},
+      {"table_directions", friction_->table ? nlohmann::ordered_json(table_directions_)
+                                            : nlohmann::ordered_json(nullptr)}});
+  return j;
+}
+
+nlohmann::ordered_json run_json(const model::ShimmyRun& run) {
+  using model::ShimmyIndex;
+  const auto& x = run.final;
+  nlohmann::ordered_json outcome{{"kind", model::outcome_name(run.outcome)}};
+  if (run.outcome == model::ShimmyOutcome::LimitCycle ||
+      run.outcome == model::ShimmyOutcome::Growing) {
+    outcome["amplitude"] = json_number(run.cycle.amplitude);
+    outcome["frequency"] = json_number(run.cycle.frequency);
+  }
+  if (run.outcome == model::ShimmyOutcome::Growing)
+    outcome["growth_per_cycle"] = json_number(run.cycle.growth);
+  return nlohmann::ordered_json{
+      {"t_end", run.t_end},
+      {"final",
+       {{"y", x[model::kSY]},
+        {"y_dot", x[model::kSYDot]},
+        {"psi", x[model::kSPsi]},
+        {"psi_dot", x[model::kSPsiDot]},
+        {"phase", run.in_stick ? "stick" : "slip"}}},
+      {"outcome", outcome},
+      {"energy",
+       {{"initial", run.energy_initial},
+        {"final", run.energy_final},
+        {"damping_dissipated", x[model::kSDamping]},
+        {"contact_work", x[model::kSContactWork]},
+        {"friction_dissipated", x[model::kSFriction]},
+        {"impulse_work", run.impulse_work},
+        {"balance_error", (run.energy_final - run.energy_initial) -
+                              (x[model::kSContactWork] - x[model::kSDamping])}}},
+      {"first_switch", json_number(run.first_switch >= 0.0 ? run.first_switch : HUGE_VAL)},
+      {"stick_phases", run.stick_phases},
+      {"largest_projected_slip", run.largest_projected_slip},
+      {"forced_switches", run.forced_switches},
+      {"slip_starts", run.slip_starts},
+      {"steps", run.steps},
+      {"rejected_steps", run.rejected},
+      {"evaluations", run.evaluations},
+      {"step_limit_reached", run.step_limit}};
+}
+
+ShimmyResult shimmy(const ShimmyRequest& r) {
+  const ShimmyCase c(r);
+  ShimmyResult out;
+  const auto t0 = std::chrono::steady_clock::now();
+  out.run = c.run(c.wheel(), c.start(), c.settings(),
+                  [&out](const model::ShimmyRow& row) { out.rows.push_back(row); });
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.summary = c.description(c.wheel());
+  out.summary.update(run_json(out.run));
+  out.summary["wall_time_s"] = wall;
+  return out;
+}
+
+std::string shimmy_csv(const std::vector<model::ShimmyRow>& rows) {
+  std::string out = "t,y,y_dot,psi,psi_dot,u_y,T_y,M_z\n";
+  for (const auto& s : rows)
+    fmt::format_to(std::back_inserter(out),
+                   "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", s.t, s.y,
+                   s.y_dot, s.psi, s.psi_dot, s.u_y, s.T_y, s.M_z);
+  return out;
+}
+
+}  // namespace frictionid::app

@@ -1,0 +1,191 @@
+// frictionid shimmy through the built executable (FRICTIONID_EXE, set by ctest): the JSON summary
+// with its energy account, the trajectory CSV at k dt, the speed sweep's files, --from-report,
+// and exit code 2 with one line and nothing written on bad input.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int code;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+RunResult run(const std::string& args) {
+  const char* exe = std::getenv("FRICTIONID_EXE");
+  if (!exe) return {-1, "", "FRICTIONID_EXE not set"};
+  const fs::path err_file =
+      fs::temp_directory_path() / ("frictionid_shimmy_err_" + std::to_string(::getpid()));
+  const std::string cmd = std::string(exe) + " " + args + " 2>" + err_file.string();
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  const int status = pclose(p);
+  std::ifstream in(err_file);
+  std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  fs::remove(err_file);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out, err};
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() /
+                     ("frictionid_cli_shimmy_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+const std::string kWheel =
+    "shimmy --model corrected --pressure uniform --param f=0.8 --N 1000 --R 0.05 --caster 0.1 "
+    "--yaw-inertia 0.5 --yaw-stiffness 2000 --yaw-damping 1 --lateral-mass 20 "
+    "--lateral-stiffness 2e5 --lateral-damping 50 --psi0 0.05";
+
+TEST(CliShimmy, PrintsTheSummaryWithItsEnergyAccountAndWritesRowsAtMultiplesOfTheStep) {
+  const fs::path d = fresh_dir("run");
+  const fs::path csv = d / "traj.csv";
+  const RunResult r =
+      run(kWheel + " --speed 15 --duration 0.5 --output-step 0.002 --output " + csv.string());
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key :
+       {"model", "parameters", "speed", "caster", "final", "outcome", "energy", "trajectory_rows"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  for (const char* key : {"y", "y_dot", "psi", "psi_dot"}) EXPECT_TRUE(j["final"].contains(key));
+  const auto& e = j["energy"];
+  const double initial = e["initial"], final_ = e["final"], work = e["contact_work"],
+               damping = e["damping_dissipated"], friction = e["friction_dissipated"];
+  EXPECT_NEAR(final_ - initial, work - damping,
+              1e-8 * std::max({initial, std::fabs(work), damping, friction}));
+  EXPECT_GE(friction, 0.0);
+  EXPECT_DOUBLE_EQ(initial, 0.5 * 2000 * 0.05 * 0.05);
+
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "t,y,y_dot,psi,psi_dot,u_y,T_y,M_z");
+  std::size_t rows = 0;
+  for (std::string line; std::getline(in, line); ++rows) {
+    const double t = std::stod(line.substr(0, line.find(',')));
+    EXPECT_EQ(t, static_cast<double>(rows) * 0.002) << line;
+  }
+  EXPECT_EQ(rows, 251u);
+  EXPECT_EQ(rows, j["trajectory_rows"].get<std::size_t>());
+  fs::remove_all(d);
+}
+
+TEST(CliShimmy, RigidStrutEndsAtRest) {
+  const RunResult r = run(kWheel + " --lateral rigid --speed 10 --duration 1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["outcome"]["kind"], "rest");
+  EXPECT_EQ(j["final"]["phase"], "stick");
+}
+
+TEST(CliShimmy, SpeedSweepWritesTheMapAndTheKeldyshBaselineRuns) {
+  for (const char* law : {"friction", "nonholonomic"}) {
+    const fs::path d = fresh_dir(law);
+    const RunResult r = run(kWheel + " --duration 1 --contact-law " + law +
+                            " --speed-sweep 5:30:3 --sweep-dir " + d.string());
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["points"].size(), 3u);
+    EXPECT_TRUE(j.contains("onsets"));
+    std::ifstream in(d / "shimmy.csv");
+    std::string header;
+    std::getline(in, header);
+    EXPECT_EQ(header, "V,outcome,amplitude,frequency");
+    std::size_t rows = 0;
+    for (std::string line; std::getline(in, line);) ++rows;
+    EXPECT_EQ(rows, 3u);
+    std::ifstream html(d / "shimmy.html");
+    const std::string page((std::istreambuf_iterator<char>(html)),
+                           std::istreambuf_iterator<char>());
+    EXPECT_NE(page.find("<svg"), std::string::npos);
+    fs::remove_all(d);
+  }
+}
+
+TEST(CliShimmy, TwoDimensionalSweepHasTheParameterColumn) {
+  const fs::path d = fresh_dir("map");
+  const RunResult r = run(kWheel +
+                          " --duration 0.5 --speed-sweep 5:30:2 --sweep-param "
+                          "yaw-damping:0:5:2 --sweep-dir " +
+                          d.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(d / "shimmy.csv");
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "V,yaw-damping,outcome,amplitude,frequency");
+  std::size_t rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  EXPECT_EQ(rows, 4u);
+  fs::remove_all(d);
+}
+
+std::string version() {
+  const RunResult v = run("--version");
+  return v.out.substr(v.out.find(' ') + 1, v.out.find('\n') - v.out.find(' ') - 1);
+}
+
+void write_report(const fs::path& path, const std::string& version) {
+  std::ofstream(path) << R"({"model": "corrected", "pressure": "uniform", "parameters": {"f": )"
+                      << R"({"value": 0.8}, "kappa": {"value": 1.0}, "h": {"value": 0.0}}, )"
+                      << R"("provenance": {"version": ")" << version << R"("}})";
+}
+
+TEST(CliShimmy, FromReportTakesTheFittedModel) {
+  const fs::path d = fresh_dir("report");
+  write_report(d / "report.json", version());
+  const RunResult r =
+      run("shimmy --from-report " + (d / "report.json").string() + " --psi0 0.05 --duration 0.1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["model"], "corrected");
+  EXPECT_DOUBLE_EQ(j["parameters"]["f"].get<double>(), 0.8);
+  fs::remove_all(d);
+}
+
+TEST(CliShimmy, BadInputExitsWithCodeTwoOneLineAndWritesNothing) {
+  const fs::path d = fresh_dir("bad");
+  write_report(d / "other.json", "0.0.0-elsewhere");
+  write_report(d / "report.json", version());
+  const std::string out = " --output " + (d / "traj.csv").string();
+  const std::string sweep_dir = " --sweep-dir " + d.string();
+  for (const std::string& args :
+       {kWheel + " --N 0", kWheel + " --R -1", kWheel + " --speed 0", kWheel + " --duration 0",
+        kWheel + " --yaw-inertia 0", kWheel + " --lateral-mass -2", kWheel + " --yaw-stiffness -1",
+        kWheel + " --yaw-damping -1", kWheel + " --lateral-stiffness -1",
+        kWheel + " --lateral-damping -0.5", kWheel + " --speed nan",
+        kWheel + " --speed-sweep 30:5:3" + sweep_dir, kWheel + " --speed-sweep 5:30:1" + sweep_dir,
+        kWheel + " --speed-sweep 5:5:3" + sweep_dir,
+        kWheel + " --speed-sweep 5:30:3 --sweep-param yaw-damping:2:1:3" + sweep_dir,
+        kWheel + " --speed-sweep 5:30:3 --sweep-param mass:1:2:3" + sweep_dir,
+        "shimmy --from-report " + (d / "other.json").string(),
+        "shimmy --from-report " + (d / "report.json").string() + " --param f=0.5",
+        "shimmy --from-report " + (d / "missing.json").string()}) {
+    const RunResult r = run(args + out);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << args << ": " << r.out;
+    EXPECT_FALSE(fs::exists(d / "traj.csv")) << args;
+    EXPECT_FALSE(fs::exists(d / "shimmy.csv")) << args;
+  }
+  fs::remove_all(d);
+}
+
+}  // namespace

@@ -1,0 +1,240 @@
+// The towed wheel (docs/physics.md §10): the first slip phase against an independent classical
+// Runge–Kutta integration of the equations written out again with the uniform disk's closed forms
+// (std::comp_ellint_*, not src/model); the energy balance (10.6) in every phase; rest reached in
+// bounded steps; the cohesion test (10.3) against the uniform disk's known limits; the Keldysh
+// constraint kept; rows of the dense output at k dt.
+#include <frictionid/model/shimmy_simulation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include <frictionid/model/exact_model.hpp>
+#include <frictionid/model/pressure_law.hpp>
+
+namespace {
+
+using namespace frictionid::model;
+
+constexpr double kF = 0.8;
+
+ShimmyWheel test_wheel(bool rigid = false) {
+  ShimmyWheel w;
+  w.V = 10.0;
+  w.caster = 0.1;
+  w.J = 0.5;
+  w.k_psi = 2000.0;
+  w.c_psi = 1.0;
+  w.m_y = 20.0;
+  w.k_y = 2e5;
+  w.c_y = 50.0;
+  w.rigid_lateral = rigid;
+  w.N = 1000.0;
+  w.R = 0.05;
+  return w;
+}
+
+struct UniformExact {
+  ExactModel<double> model{{kF, 1.0, 0.0}, PressureLaw<double>::uniform()};
+  Resultants<double> operator()(const Kinematics& k) const { return model(k); }
+};
+
+// The second implementation: the equations of motion (10.1)-(10.2) written out again as the
+// issue states them, integrated by classical RK4 with a fixed small step. The friction is the
+// same model (it is not what is tested here). z = (y, y', psi, psi').
+using Z = std::array<double, 4>;
+Z reference_rate(const ShimmyWheel& w, const Z& z) {
+  static const UniformExact friction;
+  const double u = -w.V * std::sin(z[2]) + z[1] * std::cos(z[2]) - w.caster * z[3];
+  const Resultants<double> r = friction(Kinematics{0.0, u, z[3], w.N, w.R});
+  const double ydd =
+      (-w.k_y * z[0] - w.c_y * z[1] - r.T_x * std::sin(z[2]) - r.T_y * std::cos(z[2])) / w.m_y;
+  const double pdd = (-w.k_psi * z[2] - w.c_psi * z[3] + w.caster * r.T_y - r.M_z) / w.J;
+  return {z[1], ydd, z[3], pdd};
+}
+
+Z rk4(const ShimmyWheel& w, Z z, double t0, double t1, double h) {
+  const int n = static_cast<int>(std::ceil((t1 - t0) / h));
+  const double dt = (t1 - t0) / n;
+  for (int i = 0; i < n; ++i) {
+    const Z k1 = reference_rate(w, z);
+    Z a;
+    for (int j = 0; j < 4; ++j) a[j] = z[j] + 0.5 * dt * k1[j];
+    const Z k2 = reference_rate(w, a);
+    for (int j = 0; j < 4; ++j) a[j] = z[j] + 0.5 * dt * k2[j];
+    const Z k3 = reference_rate(w, a);
+    for (int j = 0; j < 4; ++j) a[j] = z[j] + dt * k3[j];
+    const Z k4 = reference_rate(w, a);
+    for (int j = 0; j < 4; ++j) z[j] += dt / 6.0 * (k1[j] + 2 * k2[j] + 2 * k3[j] + k4[j]);
+  }
+  return z;
+}
+
+TEST(Shimmy, FirstSlipPhaseMatchesAnIndependentRungeKuttaIntegration) {
+  const ShimmyWheel w = test_wheel();
+  ShimmySettings set;
+  set.duration = 0.2;
+  set.rtol = set.atol = 1e-12;
+  set.record = true;
+  set.output_step = 1e-3;
+  std::vector<ShimmyRow> rows;
+  const ShimmyStart start{0.002, 0.0, 0.05, 0.0};
+  const ShimmyRun run = simulate_shimmy(UniformExact{}, w, start, set,
+                                        [&](const ShimmyRow& r) { rows.push_back(r); });
+  ASSERT_GT(run.first_switch, 0.01);
+  // Compare while the slip is well away from its zero (where its direction turns on a time scale
+  // that a fixed step cannot follow).
+  Z z{start.y, start.y_dot, start.psi, start.psi_dot};
+  double t = 0.0;
+  int compared = 0;
+  for (const ShimmyRow& r : rows) {
+    if (r.t >= run.first_switch) break;
+    z = rk4(w, z, t, r.t, 2e-6);
+    t = r.t;
+    const double u = -w.V * std::sin(z[2]) + z[1] * std::cos(z[2]) - w.caster * z[3];
+    if (std::hypot(u, w.R * z[3]) < 1e-3 * run.scales.slip) break;
+    EXPECT_NEAR(r.y, z[0], 1e-8 * run.scales.y) << r.t;
+    EXPECT_NEAR(r.y_dot, z[1], 1e-8 * run.scales.y_dot) << r.t;
+    EXPECT_NEAR(r.psi, z[2], 1e-8 * run.scales.psi) << r.t;
+    EXPECT_NEAR(r.psi_dot, z[3], 1e-8 * run.scales.psi_dot) << r.t;
+    ++compared;
+  }
+  EXPECT_GT(compared, 10);
+}
+
+double balance_error(const ShimmyRun& r) {
+  const double W = r.final[kSContactWork], D = r.final[kSDamping];
+  const double size = std::max({std::fabs(r.energy_initial), std::fabs(r.energy_final),
+                                std::fabs(W), std::fabs(D), std::fabs(r.final[kSFriction])});
+  return std::fabs((r.energy_final - r.energy_initial) - (W - D)) / size;
+}
+
+TEST(Shimmy, EnergyBalanceClosesThroughSlipAndStickPhases) {
+  for (bool rigid : {false, true}) {
+    ShimmySettings set;
+    set.duration = 1.0;
+    const ShimmyRun run = simulate_shimmy(UniformExact{}, test_wheel(rigid), {0.0, 0.0, 0.05, 0.0},
+                                          set, [](const ShimmyRow&) {});
+    EXPECT_LT(balance_error(run), 1e-8) << rigid;
+    EXPECT_GE(run.final[kSFriction], 0.0);
+    EXPECT_GT(run.final[kSDamping], 0.0);
+    if (!rigid) {
+      EXPECT_GT(run.stick_phases, 0);  // the balance is tested across phases
+    }
+  }
+}
+
+TEST(Shimmy, FrictionDissipationNeverDecreases) {
+  ShimmySettings set;
+  set.duration = 0.5;
+  double last = 0.0;
+  for (double T : {0.05, 0.1, 0.2, 0.5}) {
+    set.duration = T;
+    const ShimmyRun run = simulate_shimmy(UniformExact{}, test_wheel(), {0.0, 0.0, 0.05, 0.0}, set,
+                                          [](const ShimmyRow&) {});
+    EXPECT_GE(run.final[kSFriction], last - 1e-12) << T;
+    last = run.final[kSFriction];
+  }
+}
+
+TEST(Shimmy, RigidStrutComesToRestInBoundedSteps) {
+  ShimmySettings set;
+  set.duration = 5.0;
+  const ShimmyRun run = simulate_shimmy(UniformExact{}, test_wheel(true), {0.0, 0.0, 0.05, 0.0},
+                                        set, [](const ShimmyRow&) {});
+  EXPECT_EQ(run.outcome, ShimmyOutcome::Rest);
+  EXPECT_TRUE(run.in_stick);
+  EXPECT_DOUBLE_EQ(run.t_end, 5.0);
+  EXPECT_EQ(run.final[kSPsi], 0.0);
+  EXPECT_LT(run.steps + run.rejected, 100000);
+  EXPECT_FALSE(run.step_limit);
+}
+
+TEST(Shimmy, CohesionTestAgainstTheUniformDisksLimits) {
+  // Uniform disk: pure sliding carries f N, pure spin (2/3) f N R; the limit set holds what is
+  // inside and nothing outside.
+  const ShimmyWheel w = test_wheel();
+  const UniformExact fr;
+  const ShimmyLimitCurve curve(fr, w.N, w.R);
+  const double T = kF * w.N, M = 2.0 / 3.0 * kF * w.N * w.R;
+  EXPECT_GT(curve.margin(fr, {0.0, 0.0, 0.0}).value, 0.0);
+  EXPECT_GT(curve.margin(fr, {0.0, 0.99 * T, 0.0}).value, 0.0);
+  EXPECT_LT(curve.margin(fr, {0.0, 1.01 * T, 0.0}).value, 0.0);
+  EXPECT_GT(curve.margin(fr, {0.0, 0.0, -0.99 * M}).value, 0.0);
+  EXPECT_LT(curve.margin(fr, {0.0, 0.0, -1.01 * M}).value, 0.0);
+  // The margin is at most the reserve along theta = 0 (the support f N less the load); the
+  // curved boundary leaves less in a direction between.
+  const double half = curve.margin(fr, {0.0, 0.5 * T, 0.0}).value;
+  EXPECT_GT(half, 0.0);
+  EXPECT_LE(half, 0.5 * T * (1.0 + 1e-12));
+  // A load inside sticks the wheel at s = 0: a start at psi = 0 with a displaced strut whose
+  // constraint loads are inside stays at rest.
+  ShimmySettings set;
+  set.duration = 0.5;
+  ShimmyWheel still = w;
+  still.caster = 0.0;
+  const ShimmyRun run =
+      simulate_shimmy(fr, still, {0.2 * T / w.k_y, 0.0, 0.0, 0.0}, set, [](const ShimmyRow&) {});
+  EXPECT_EQ(run.outcome, ShimmyOutcome::Rest);
+  EXPECT_EQ(run.steps, 0);
+  // One outside it slides.
+  const ShimmyRun slides =
+      simulate_shimmy(fr, still, {2.0 * T / w.k_y, 0.0, 0.0, 0.0}, set, [](const ShimmyRow&) {});
+  EXPECT_GT(slides.steps, 0);
+  EXPECT_GT(slides.final[kSFriction], 0.0);
+}
+
+TEST(Shimmy, NonholonomicBaselineKeepsTheNoSlipConstraint) {
+  ShimmySettings set;
+  set.duration = 0.3;
+  set.law = ShimmyContactLaw::Nonholonomic;
+  set.record = true;
+  set.output_step = 1e-3;
+  const ShimmyWheel w = test_wheel();
+  double worst = 0.0;
+  std::size_t rows = 0;
+  const ShimmyRun run =
+      simulate_shimmy(UniformExact{}, w, {0.0, 0.0, 0.05, 0.0}, set, [&](const ShimmyRow& r) {
+        worst = std::max(worst, std::fabs(r.u_y));
+        EXPECT_EQ(r.M_z, 0.0);
+        ++rows;
+      });
+  EXPECT_LT(worst, 1e-7 * run.scales.slip);
+  EXPECT_LT(balance_error(run), 1e-8);
+  EXPECT_EQ(rows, 301u);
+}
+
+TEST(Shimmy, RowsFallExactlyOnMultiplesOfTheOutputStep) {
+  ShimmySettings set;
+  set.duration = 0.25;
+  set.record = true;
+  set.output_step = 0.01;
+  std::vector<double> times;
+  simulate_shimmy(UniformExact{}, test_wheel(), {0.0, 0.0, 0.05, 0.0}, set,
+                  [&](const ShimmyRow& r) { times.push_back(r.t); });
+  ASSERT_EQ(times.size(), 26u);
+  for (std::size_t k = 0; k < times.size(); ++k) EXPECT_EQ(times[k], static_cast<double>(k) * 0.01);
+}
+
+TEST(ShimmyOutcome, CyclesAreClassifiedByTheirAmplitudes) {
+  const auto extremes = [](double ratio) {
+    std::vector<PsiExtreme> e;
+    double a = 0.1;
+    for (int k = 0; k < 12; ++k) {
+      e.push_back({0.05 * k, (k % 2 ? -a : a)});
+      a *= std::sqrt(ratio);  // per half cycle
+    }
+    return e;
+  };
+  const CycleEstimate steady = classify_cycles(extremes(1.0), 1e-3);
+  EXPECT_EQ(steady.outcome, ShimmyOutcome::LimitCycle);
+  EXPECT_NEAR(steady.amplitude, 0.1, 1e-12);
+  EXPECT_NEAR(steady.frequency, 10.0, 1e-9);  // period 0.1 s
+  EXPECT_EQ(classify_cycles(extremes(1.2), 1e-3).outcome, ShimmyOutcome::Growing);
+  EXPECT_EQ(classify_cycles(extremes(0.8), 1e-3).outcome, ShimmyOutcome::Duration);
+}
+
+}  // namespace
