@@ -14,32 +14,16 @@
 #include <fstream>
 #include <string>
 
+#include "support/run_command.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int code;
-  std::string out;  // stdout
-  std::string err;  // stderr
-};
+using RunResult = frictionid::test::SplitResult;
 
 RunResult run(const std::string& args) {
-  const char* exe = std::getenv("FRICTIONID_EXE");
-  if (!exe) return {-1, "", "FRICTIONID_EXE not set"};
-  const fs::path err_file =
-      fs::temp_directory_path() / ("frictionid_shimmy_err_" + std::to_string(::getpid()));
-  const std::string cmd = std::string(exe) + " " + args + " 2>" + err_file.string();
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  const int status = pclose(p);
-  std::ifstream in(err_file);
-  std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  fs::remove(err_file);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out, err};
+  return frictionid::test::run_frictionid_split(args);
 }
 
 fs::path fresh_dir(const std::string& name) {

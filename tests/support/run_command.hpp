@@ -3,9 +3,13 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 namespace frictionid::test {
@@ -32,6 +36,28 @@ inline CommandResult run_frictionid(const std::string& args) {
   const char* exe = std::getenv("FRICTIONID_EXE");
   if (!exe) return {-1, "FRICTIONID_EXE not set"};
   return run_command(std::string(exe) + " " + args + " 2>&1");
+}
+
+struct SplitResult {
+  int code;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+// Runs FRICTIONID_EXE with `args` (shell words), taking stdout and stderr apart (stderr through a
+// temporary file of this process).
+inline SplitResult run_frictionid_split(const std::string& args) {
+  const char* exe = std::getenv("FRICTIONID_EXE");
+  if (!exe) return {-1, "", "FRICTIONID_EXE not set"};
+  const std::filesystem::path err_file =
+      std::filesystem::temp_directory_path() /
+      ("frictionid_stderr_" + std::to_string(::getpid()));
+  const CommandResult r =
+      run_command(std::string(exe) + " " + args + " 2>" + err_file.string());
+  std::ifstream in(err_file);
+  std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove(err_file);
+  return {r.code, r.out, err};
 }
 
 }  // namespace frictionid::test

@@ -56,10 +56,18 @@ struct Dopri5Step {
   OdeVector<T, N> f_end;  // f(t + h, y): the first stage of the next step (FSAL)
 };
 
-// One step of size h from (t, y) with f0 = f(t, y). Six new evaluations of f.
+// The inner stages of a step, for its dense output (dopri5_dense.hpp).
+template <typename T, std::size_t N>
+struct Dopri5Stages {
+  OdeVector<T, N> k3, k4, k5, k6;
+};
+
+// One step of size h from (t, y) with f0 = f(t, y). Six new evaluations of f. `stages`, when
+// given, receives the stages the dense output needs.
 template <typename T, std::size_t N, typename Rhs>
 Dopri5Step<T, N> dopri5_step(const Rhs& f, const T& t, const OdeVector<T, N>& y,
-                             const OdeVector<T, N>& f0, const T& h) {
+                             const OdeVector<T, N>& f0, const T& h,
+                             Dopri5Stages<T, N>* stages = nullptr) {
   using C = detail::Dopri5Tableau;
   OdeVector<T, N> tmp, k2, k3, k4, k5, k6;
   for (std::size_t i = 0; i < N; ++i) tmp[i] = y[i] + h * (C::a21 * f0[i]);
@@ -84,6 +92,7 @@ Dopri5Step<T, N> dopri5_step(const Rhs& f, const T& t, const OdeVector<T, N>& y,
   for (std::size_t i = 0; i < N; ++i)
     s.error[i] = h * (C::e1 * f0[i] + C::e3 * k3[i] + C::e4 * k4[i] + C::e5 * k5[i] +
                       C::e6 * k6[i] + C::e7 * s.f_end[i]);
+  if (stages) *stages = {k3, k4, k5, k6};
   return s;
 }
 
