@@ -57,10 +57,19 @@ void add_correlation(const LocalProblem& lp, const JacobianCovariance& cov, FitR
 
 // HC3 standard errors for the determined free parameters.
 void add_sandwich_errors(const LocalProblem& lp, const ParamVector& x,
-                         const JacobianCovariance& cov, FitResult& res) {
+                         const JacobianCovariance& cov, double cov_scale, FitResult& res,
+                         FitStatisticsDetail* detail) {
   if (lp.free.empty() || res.dof == 0) return;
-  const auto meat = sandwich_meat(lp, x, cov.covariance);
+  Eigen::MatrixXd spread;
+  const auto meat = sandwich_meat(lp, x, cov.covariance, &spread);
   if (!meat) return;
+  if (detail)
+    for (std::size_t j = 0; j < lp.free.size(); ++j) {
+      const double sum_q = spread(idx(j), 0), sum_q2 = spread(idx(j), 1);
+      if (!cov.determined[j] || !(sum_q > 0.0 && sum_q2 > 0.0)) continue;
+      detail->sandwich_expected[j] = sum_q * cov_scale;
+      detail->sandwich_dof[j] = sum_q * sum_q / sum_q2;
+    }
   const Eigen::MatrixXd sandwich = cov.covariance * *meat * cov.covariance;
   for (std::size_t j = 0; j < lp.free.size(); ++j) {
     if (!cov.determined[j]) continue;
@@ -173,7 +182,7 @@ InformationCriteria information_criteria(double chi2, std::size_t n, std::size_t
 
 std::vector<int> add_fit_statistics(const LocalProblem& lp, const ParamVector& x,
                                     const ParamVector& start, const NoiseTerms& noise,
-                                    FitResult& res) {
+                                    FitResult& res, FitStatisticsDetail* detail) {
   const Dataset& data = *lp.rows.data;
   // The whitened Jacobian at the optimum (free columns), as its triangular factor.
   const std::size_t k = lp.free.size();
@@ -207,10 +216,16 @@ std::vector<int> add_fit_statistics(const LocalProblem& lp, const ParamVector& x
 
   const JacobianCovariance cov = covariance_from_jacobian(jacobian_r);
   std::vector<int> undetermined;
-  add_parameter_estimates(lp, x, start, cov, absolute_sigma ? 1.0 : res.reduced_chi2, res,
-                          undetermined);
+  const double cov_scale = absolute_sigma ? 1.0 : res.reduced_chi2;
+  add_parameter_estimates(lp, x, start, cov, cov_scale, res, undetermined);
   add_correlation(lp, cov, res);
-  add_sandwich_errors(lp, x, cov, res);
+  if (detail) {
+    detail->covariance = cov.covariance * (res.dof > 0 ? cov_scale : 0.0);
+    detail->determined = cov.determined;
+    detail->sandwich_expected.assign(k, std::nullopt);
+    detail->sandwich_dof.assign(k, std::nullopt);
+  }
+  add_sandwich_errors(lp, x, cov, cov_scale, res, detail);
   add_predictions(lp, x, res);
   add_channel_fit_quality(data, res);
   return undetermined;

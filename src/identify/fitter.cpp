@@ -103,8 +103,9 @@ FittedRun fit_keeping_problem(const FitSettings& settings, const Dataset& data,
 
   run.x = best.x;
   const LocalProblem* final_problem = &run.problem;
+  FitStatisticsDetail detail;
   const std::vector<int> undetermined =
-      add_fit_statistics(*final_problem, best.x, search.start, noise_terms, res);
+      add_fit_statistics(*final_problem, best.x, search.start, noise_terms, res, &detail);
   res.intervals = s.intervals;
   res.interval_method = s.intervals == IntervalMethod::Model      ? "model"
                         : s.intervals == IntervalMethod::Sandwich ? "sandwich"
@@ -112,7 +113,7 @@ FittedRun fit_keeping_problem(const FitSettings& settings, const Dataset& data,
   if (s.intervals == IntervalMethod::Profile)
     add_profile_intervals(*final_problem, best.x, res, observer);
   add_bootstrap_intervals(*final_problem, best.x, s.bootstrap, s.seed, res, observer);
-  add_fit_warnings(*final_problem, best.x, undetermined, res);
+  add_fit_warnings(*final_problem, best.x, undetermined, res, &detail);
 
   using seconds = std::chrono::duration<double>;
   const auto t_end = clock::now();
