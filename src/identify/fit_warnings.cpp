@@ -10,6 +10,7 @@
 #include <frictionid/model/coefficients.hpp>
 
 #include "identify/noise_reweighting.hpp"
+#include "identify/profile_intervals.hpp"
 #include "identify/residual_diagnostics.hpp"
 
 namespace frictionid {
@@ -163,7 +164,7 @@ void warn_undetermined_and_correlated(const LocalProblem& lp, const std::vector<
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = a + 1; b < n; ++b) {
       const double c = res.correlation[a][b];
-      if (std::fabs(c) <= 0.99) continue;
+      if (std::fabs(c) <= kStrongCorrelation) continue;
       const std::string na = res.correlation_names[a], nb = res.correlation_names[b];
       std::string w = na + " and " + nb + " are strongly correlated (r = " + number_text(c) +
                       "): the data determine mainly a combination of them";
@@ -171,6 +172,21 @@ void warn_undetermined_and_correlated(const LocalProblem& lp, const std::vector<
         w +=
             "; T_y carries them only as h*kappa, M_roll (h alone) or M_z with a known pressure law "
             "separates them";
+      // Their symmetric intervals can miss on one side; the profile ones were computed.
+      if (res.intervals != IntervalMethod::Profile) {
+        std::string profiles;
+        for (const std::string& name : {na, nb}) {
+          const ParameterEstimate* e = res.parameter(name);
+          if (!e || !e->ci95_profile) continue;
+          profiles += (profiles.empty() ? "" : ", ") + name + " [" +
+                      number_text((*e->ci95_profile)[0]) + ", " +
+                      number_text((*e->ci95_profile)[1]) + "]";
+        }
+        if (!profiles.empty())
+          w += ". Their symmetric " + res.interval_method +
+               " intervals may miss on one side; the profile intervals (ci95_profile) are " +
+               profiles + ": use --intervals profile to report them first";
+      }
       res.warnings.push_back(w);
     }
 }
@@ -248,6 +264,16 @@ void warn_closed_form_coefficients(const LocalProblem& lp, const ParamVector& x,
       se = *gap;
     }
     if (!(std::fabs(x[i] - v) > 3.0 * se)) continue;
+    // Nearly collinear coefficients (kappa, b, m on eps > 1 alone) have a curved cost valley
+    // where the linear standard error misleads: the profile of the cost at the law's value
+    // (the likelihood ratio, kappa and the rest refitted) must agree that it lies beyond 3
+    // standard errors.
+    if (v > s.params[i].lower && v < s.params[i].upper) {
+      ParamVector warm = x;
+      const double scale = res.covariance_scaled_by_reduced_chi2 ? res.reduced_chi2 : 1.0;
+      const double held = profile_cost(lp, i, v, warm, nullptr);
+      if (std::isfinite(held) && !(2.0 * (held - res.cost) > 9.0 * scale)) continue;
+    }
     res.warnings.push_back(
         std::string(param_names()[i]) + " = " + number_text(x[i]) + " differs from the value " +
         number_text(v) + " that the " + s.law_label + " pressure implies by " +

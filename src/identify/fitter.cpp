@@ -110,8 +110,15 @@ FittedRun fit_keeping_problem(const FitSettings& settings, const Dataset& data,
   res.interval_method = s.intervals == IntervalMethod::Model      ? "model"
                         : s.intervals == IntervalMethod::Sandwich ? "sandwich"
                                                                   : "profile";
-  if (s.intervals == IntervalMethod::Profile)
+  if (s.intervals == IntervalMethod::Profile) {
     add_profile_intervals(*final_problem, best.x, res, observer);
+  } else {
+    // Nearly collinear parameters: their symmetric intervals may miss on one side; the profile
+    // follows the cost's valley (§8.12), so it is computed for them whatever the method.
+    const auto correlated = strongly_correlated_parameters(res);
+    if (!correlated.empty())
+      add_profile_intervals(*final_problem, best.x, res, observer, &correlated);
+  }
   add_bootstrap_intervals(*final_problem, best.x, s.bootstrap, s.seed, res, observer);
   add_fit_warnings(*final_problem, best.x, undetermined, res, &detail);
 

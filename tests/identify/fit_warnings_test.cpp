@@ -197,5 +197,40 @@ TEST(NoiseFreeChannels, AreNamedAndLeaveEveryParameterAStandardError) {
   EXPECT_EQ(named, 2u) << all_warnings(r);
 }
 
+// eps only above 1.5: kappa, b and m are nearly collinear. Their profile intervals are computed
+// under the default interval method and the correlation warning gives them; a parameter in no
+// such pair gets none.
+TEST(CorrelatedParameters, GetProfileIntervalsByDefaultAndTheWarningGivesThem) {
+  SyntheticDesign design;
+  design.eps_min = 1.5;
+  const FitResult r = fit_seed(design, 5);
+  ASSERT_EQ(r.intervals, IntervalMethod::Model);
+  std::vector<std::string> correlated;
+  const std::size_t n = r.correlation_names.size();
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = 0; b < n; ++b)
+      if (a != b && std::fabs(r.correlation[a][b]) > 0.99) {
+        correlated.push_back(r.correlation_names[a]);
+        break;
+      }
+  ASSERT_FALSE(correlated.empty());
+  for (const auto& p : r.parameters) {
+    const bool in_pair =
+        std::find(correlated.begin(), correlated.end(), p.name) != correlated.end();
+    EXPECT_EQ(p.ci95_profile.has_value(), in_pair) << p.name;
+    if (p.ci95_profile) {
+      EXPECT_LT((*p.ci95_profile)[0], p.value);
+      EXPECT_GT((*p.ci95_profile)[1], p.value);
+    }
+  }
+  EXPECT_TRUE(has_warning(r, "use --intervals profile")) << all_warnings(r);
+}
+
+// Without a strongly correlated pair nothing is profiled under the default method.
+TEST(CorrelatedParameters, NoneWithoutAStrongCorrelation) {
+  const FitResult r = fit_seed(SyntheticDesign{}, 5);
+  for (const auto& p : r.parameters) EXPECT_FALSE(p.ci95_profile) << p.name;
+}
+
 }  // namespace
 }  // namespace frictionid
