@@ -19,22 +19,67 @@ Eigen::Index idx(std::size_t i) {
 }
 
 void add_parameter_estimates(const LocalProblem& lp, const ParamVector& x, const ParamVector& start,
-                             const JacobianCovariance& cov, double cov_scale, FitResult& res,
+                             const JacobianCovariance& cov, double cov_scale,
+                             const std::vector<double>& interval_dof, FitResult& res,
                              std::vector<int>& undetermined) {
   const FitSettings& s = *lp.settings;
   const double tq = res.dof > 0 ? student_t_quantile(0.975, static_cast<double>(res.dof)) : 0.0;
   for (int i : lp.used) {
     std::optional<double> var;
+    double tq_i = tq;
     if (!s.params[i].fixed) {
       const auto j =
           static_cast<std::size_t>(std::find(lp.free.begin(), lp.free.end(), i) - lp.free.begin());
       if (cov.determined[j] && res.dof > 0) var = cov.covariance(idx(j), idx(j)) * cov_scale;
       if (!cov.determined[j]) undetermined.push_back(i);
+      if (res.dof > 0 && j < interval_dof.size() && interval_dof[j] < static_cast<double>(res.dof))
+        tq_i = student_t_quantile(0.975, interval_dof[j]);
     }
-    ParameterEstimate e = parameter_estimate(s, i, x[i], var, tq);
+    ParameterEstimate e = parameter_estimate(s, i, x[i], var, tq_i);
     e.initial = start[i];
     res.parameters.push_back(e);
   }
+}
+
+// The degrees of freedom of each free parameter's variance when channels' noise was estimated
+// (§8.10): var theta_j = sum_c a_jc with a_jc = (B J_c^T J_c B)_jj the share of channel c, whose
+// sigma rests on nu_c = n_c - k_c - p_c degrees of freedom (k_c = tr(B J_c^T J_c), its share of
+// the k parameters; p_c its noise parameters). Satterthwaite: nu_j = (sum_c a_jc)^2 /
+// sum_c a_jc^2/nu_c over the estimated channels (sigma columns are known). Empty when no channel's
+// noise was estimated or a robust loss couples the channels of a row.
+std::vector<double> satterthwaite_dof(const LocalProblem& lp, const ParamVector& x,
+                                      const JacobianCovariance& cov, const FitResult& res) {
+  const std::size_t k = lp.free.size();
+  if (k == 0 || res.dof == 0 || lp.settings->loss != LossKind::None) return {};
+  if (std::none_of(res.channel_summaries.begin(), res.channel_summaries.end(),
+                   [](const ChannelSummary& cs) { return cs.noise.has_value(); }))
+    return {};
+  const Eigen::MatrixXd& b = cov.covariance;
+  Eigen::VectorXd total = Eigen::VectorXd::Zero(idx(k)), spread = Eigen::VectorXd::Zero(idx(k));
+  for (const auto& cs : res.channel_summaries) {
+    if (std::find(lp.rows.channels.begin(), lp.rows.channels.end(), cs.channel) ==
+        lp.rows.channels.end())
+      continue;
+    LocalProblem one = lp;
+    one.rows.channels = {cs.channel};
+    const auto jf = jacobian_factor(one, x);
+    if (!jf) return {};
+    const Eigen::MatrixXd g = jf->r.transpose() * jf->r;
+    const Eigen::MatrixXd bgb = b * g * b;
+    total += bgb.diagonal();
+    if (!cs.noise) continue;
+    const double p =
+        cs.noise->kind == NoiseModelKind::Constant || cs.noise->kind == NoiseModelKind::Relative
+            ? 1.0
+            : 2.0;
+    const double nu = std::max(1.0, static_cast<double>(cs.rows) - (b * g).trace() - p);
+    spread += bgb.diagonal().cwiseAbs2() / nu;
+  }
+  std::vector<double> out(k, static_cast<double>(res.dof));
+  for (std::size_t j = 0; j < k; ++j)
+    if (spread(idx(j)) > 0.0 && total(idx(j)) > 0.0)
+      out[j] = std::min(out[j], total(idx(j)) * total(idx(j)) / spread(idx(j)));
+  return out;
 }
 
 // Correlation among the parameters with a standard error.
@@ -217,7 +262,8 @@ std::vector<int> add_fit_statistics(const LocalProblem& lp, const ParamVector& x
   const JacobianCovariance cov = covariance_from_jacobian(jacobian_r);
   std::vector<int> undetermined;
   const double cov_scale = absolute_sigma ? 1.0 : res.reduced_chi2;
-  add_parameter_estimates(lp, x, start, cov, cov_scale, res, undetermined);
+  add_parameter_estimates(lp, x, start, cov, cov_scale, satterthwaite_dof(lp, x, cov, res), res,
+                          undetermined);
   add_correlation(lp, cov, res);
   if (detail) {
     detail->covariance = cov.covariance * (res.dof > 0 ? cov_scale : 0.0);
