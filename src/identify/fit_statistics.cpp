@@ -262,14 +262,17 @@ std::vector<int> add_fit_statistics(const LocalProblem& lp, const ParamVector& x
   const JacobianCovariance cov = covariance_from_jacobian(jacobian_r);
   std::vector<int> undetermined;
   const double cov_scale = absolute_sigma ? 1.0 : res.reduced_chi2;
-  add_parameter_estimates(lp, x, start, cov, cov_scale, satterthwaite_dof(lp, x, cov, res), res,
-                          undetermined);
+  const std::vector<double> interval_dof = satterthwaite_dof(lp, x, cov, res);
+  add_parameter_estimates(lp, x, start, cov, cov_scale, interval_dof, res, undetermined);
   add_correlation(lp, cov, res);
   if (detail) {
     detail->covariance = cov.covariance * (res.dof > 0 ? cov_scale : 0.0);
     detail->determined = cov.determined;
     detail->sandwich_expected.assign(k, std::nullopt);
     detail->sandwich_dof.assign(k, std::nullopt);
+    detail->interval_dof.assign(k, static_cast<double>(res.dof));
+    for (std::size_t j = 0; j < interval_dof.size() && j < k; ++j)
+      detail->interval_dof[j] = interval_dof[j];
   }
   add_sandwich_errors(lp, x, cov, cov_scale, res, detail);
   add_predictions(lp, x, res);

@@ -31,6 +31,9 @@ struct FitStatisticsDetail {
   // chi² where the covariance is scaled), and the degrees of freedom of its chi² approximation,
   // (sum_i q_il)^2 / sum_i q_il^2 (Satterthwaite; see sandwich_meat). Absent without HC3.
   std::vector<std::optional<double>> sandwich_expected, sandwich_dof;
+  // The degrees of freedom of each parameter's interval, (8.6a): n - k, or fewer where the
+  // channels' noise was estimated.
+  std::vector<double> interval_dof;
 };
 
 // Fills res.parameters, correlation, cost, chi2, dof, reduced_chi2, aic, bic, the channel

@@ -12,6 +12,7 @@
 #include "identify/noise_reweighting.hpp"
 #include "identify/profile_intervals.hpp"
 #include "identify/residual_diagnostics.hpp"
+#include "identify/statistics.hpp"
 
 namespace frictionid {
 namespace {
@@ -40,6 +41,9 @@ double rms_fitted(const FitResult& res, const Dataset& d, int c) {
     }
   return n ? scale * std::sqrt(sum / static_cast<double>(n)) : 0.0;
 }
+
+// The one-sided tail of 3 sigma of a normal: the coefficient-vs-law test's threshold.
+constexpr double kLawTail = 0.0013498980316301;
 
 // A coefficient whose standard error exceeds this share of its value is poorly determined.
 constexpr double kPoorRelativeError = 0.1;
@@ -263,7 +267,14 @@ void warn_closed_form_coefficients(const LocalProblem& lp, const ParamVector& x,
       if (!gap) continue;
       se = *gap;
     }
-    if (!(std::fabs(x[i] - v) > 3.0 * se)) continue;
+    // Three standard errors, as a Student t quantile (the same tail, 0.135 %) on the
+    // parameter's interval degrees of freedom: on few rows the noise is itself estimated.
+    double z = 3.0;
+    if (detail && detail->interval_dof.size() == lp.free.size()) {
+      const double nu = detail->interval_dof[static_cast<std::size_t>(free_column(i))];
+      if (nu >= 1.0) z = student_t_quantile(1.0 - kLawTail, nu);
+    }
+    if (!(std::fabs(x[i] - v) > z * se)) continue;
     // Nearly collinear coefficients (kappa, b, m on eps > 1 alone) have a curved cost valley
     // where the linear standard error misleads: the profile of the cost at the law's value
     // (the likelihood ratio, kappa and the rest refitted) must agree that it lies beyond 3
@@ -272,7 +283,7 @@ void warn_closed_form_coefficients(const LocalProblem& lp, const ParamVector& x,
       ParamVector warm = x;
       const double scale = res.covariance_scaled_by_reduced_chi2 ? res.reduced_chi2 : 1.0;
       const double held = profile_cost(lp, i, v, warm, nullptr);
-      if (std::isfinite(held) && !(2.0 * (held - res.cost) > 9.0 * scale)) continue;
+      if (std::isfinite(held) && !(2.0 * (held - res.cost) > z * z * scale)) continue;
     }
     res.warnings.push_back(
         std::string(param_names()[i]) + " = " + number_text(x[i]) + " differs from the value " +
