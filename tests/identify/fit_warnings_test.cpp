@@ -232,5 +232,34 @@ TEST(CorrelatedParameters, NoneWithoutAStrongCorrelation) {
   for (const auto& p : r.parameters) EXPECT_FALSE(p.ci95_profile) << p.name;
 }
 
+// Exact-model data with 2 % relative noise, slip in four directions: a constant noise model
+// mis-weights the rows and HC3 says so; the default noise model (auto) describes the noise, and
+// despite rows of leverage near 1 the sandwich check stays silent. The leverage-aware expectation
+// of HC3's variance exceeds the model's variance.
+TEST(SandwichCheck, FiresUnderAWrongNoiseModelAndNotUnderTheRightOne) {
+  using Law = model::PressureLaw<double>;
+  const Law law = Law::hertz();
+  const auto truth = default_parameters(law, 0.9, 1.15, 0.08);
+  SyntheticDesign design;
+  const double deg = std::acos(-1.0) / 180.0;
+  design.slip_angles = {0.0, 30 * deg, 60 * deg, -30 * deg};
+  const Dataset d =
+      generate_dataset(ModelKind::Exact, law, truth, design, NoiseSpec{0.02, 0.0, false}, 4);
+  FitSettings s = FitSettings::defaults(ModelKind::Exact, law, "hertz");
+  s.global_evaluations = 500;
+  s.noise_model = NoiseModelKind::Constant;
+  const FitResult wrong = Fitter(s).fit(d);
+  EXPECT_TRUE(has_warning(wrong, "HC3 sandwich")) << all_warnings(wrong);
+  s.noise_model = NoiseModelKind::Auto;
+  const FitResult right = Fitter(s).fit(d);
+  EXPECT_FALSE(has_warning(right, "HC3 sandwich")) << all_warnings(right);
+  // The earlier rule, the standard errors 25 % apart, would have fired here.
+  bool apart = false;
+  for (const auto& e : right.parameters)
+    if (e.std_error && e.std_error_sandwich)
+      apart |= std::fabs(*e.std_error_sandwich - *e.std_error) > 0.25 * *e.std_error;
+  EXPECT_TRUE(apart);
+}
+
 }  // namespace
 }  // namespace frictionid
