@@ -21,6 +21,9 @@ CASES = {
     # Exact model, 1 % relative noise, four slip directions.
     "exact": ("--model exact --param f=0.9,kappa=1.15,h=0.08 --slip-angles 0,30,60,-30 "
               "--rows 600 --noise 0.01", "--model exact"),
+    # Exact model, 1 % relative noise stated in sigma columns (no noise model estimated).
+    "exact_sigma": ("--model exact --param f=0.9,kappa=1.15,h=0.08 --slip-angles 0,30,60,-30 "
+                    "--rows 600 --noise 0.01 --sigma-columns", "--model exact"),
     # Exact model, 20 rows: leverages up to ~0.9.
     "exact_small": ("--model exact --param f=0.9,kappa=1.15,h=0.08 --rows 20 --noise 0.01",
                     "--model exact"),
