@@ -277,8 +277,8 @@ void warn_closed_form_coefficients(const LocalProblem& lp, const ParamVector& x,
     if (!(std::fabs(x[i] - v) > z * se)) continue;
     // Nearly collinear coefficients (kappa, b, m on eps > 1 alone) have a curved cost valley
     // where the linear standard error misleads: the profile of the cost at the law's value
-    // (the likelihood ratio, kappa and the rest refitted) must agree that it lies beyond 3
-    // standard errors.
+    // (the likelihood ratio, kappa and the rest refitted) must agree that it lies beyond the
+    // same threshold.
     if (v > s.params[i].lower && v < s.params[i].upper) {
       ParamVector warm = x;
       const double scale = res.covariance_scaled_by_reduced_chi2 ? res.reduced_chi2 : 1.0;
@@ -331,17 +331,15 @@ void warn_noise_free_channels(const Dataset& d, FitResult& res) {
     if (!cs.noise || !cs.rmse) continue;
     const double rms = rms_fitted(res, d, c);
     if (!(rms > 0.0) || *cs.rmse > kNoiseFreeSigma * rms) continue;
-    res.warnings.push_back(
-        "the residuals of " + std::string(channel_name(cs.channel)) +
-        " are at rounding level "
-        "(RMSE " +
-        number_text(*cs.rmse) + ", " + number_text(*cs.rmse / rms) +
-        " of its RMS fitted value): the channel is noise-free, and is treated as exact with its "
-        "sigma floored at " +
-        number_text(kNoiseFreeSigma) + " of its RMS fitted value (" +
-        number_text(kNoiseFreeSigma * rms) +
-        "); the standard errors it informs are upper bounds. Check that the channel is "
-        "measured rather than computed");
+    const std::string name = channel_name(cs.channel);
+    res.warnings.push_back("the residuals of " + name + " are at rounding level (RMSE " +
+                           number_text(*cs.rmse) + ", " + number_text(*cs.rmse / rms) +
+                           " of its RMS fitted value): the channel is noise-free, and is treated "
+                           "as exact with its sigma floored at " +
+                           number_text(kNoiseFreeSigma) + " of its RMS fitted value (" +
+                           number_text(kNoiseFreeSigma * rms) +
+                           "); the standard errors it informs are upper bounds. Check that " +
+                           name + " is measured rather than computed");
   }
 }
 
