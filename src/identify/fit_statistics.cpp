@@ -19,22 +19,67 @@ Eigen::Index idx(std::size_t i) {
 }
 
 void add_parameter_estimates(const LocalProblem& lp, const ParamVector& x, const ParamVector& start,
-                             const JacobianCovariance& cov, double cov_scale, FitResult& res,
+                             const JacobianCovariance& cov, double cov_scale,
+                             const std::vector<double>& interval_dof, FitResult& res,
                              std::vector<int>& undetermined) {
   const FitSettings& s = *lp.settings;
   const double tq = res.dof > 0 ? student_t_quantile(0.975, static_cast<double>(res.dof)) : 0.0;
   for (int i : lp.used) {
     std::optional<double> var;
+    double tq_i = tq;
     if (!s.params[i].fixed) {
       const auto j =
           static_cast<std::size_t>(std::find(lp.free.begin(), lp.free.end(), i) - lp.free.begin());
       if (cov.determined[j] && res.dof > 0) var = cov.covariance(idx(j), idx(j)) * cov_scale;
       if (!cov.determined[j]) undetermined.push_back(i);
+      if (res.dof > 0 && j < interval_dof.size() && interval_dof[j] < static_cast<double>(res.dof))
+        tq_i = student_t_quantile(0.975, interval_dof[j]);
     }
-    ParameterEstimate e = parameter_estimate(s, i, x[i], var, tq);
+    ParameterEstimate e = parameter_estimate(s, i, x[i], var, tq_i);
     e.initial = start[i];
     res.parameters.push_back(e);
   }
+}
+
+// The degrees of freedom of each free parameter's variance when channels' noise was estimated
+// (§8.10): var theta_j = sum_c a_jc with a_jc = (B J_c^T J_c B)_jj the share of channel c, whose
+// sigma rests on nu_c = n_c - k_c - p_c degrees of freedom (k_c = tr(B J_c^T J_c), its share of
+// the k parameters; p_c its noise parameters). Satterthwaite: nu_j = (sum_c a_jc)^2 /
+// sum_c a_jc^2/nu_c over the estimated channels (sigma columns are known). Empty when no channel's
+// noise was estimated or a robust loss couples the channels of a row.
+std::vector<double> satterthwaite_dof(const LocalProblem& lp, const ParamVector& x,
+                                      const JacobianCovariance& cov, const FitResult& res) {
+  const std::size_t k = lp.free.size();
+  if (k == 0 || res.dof == 0 || lp.settings->loss != LossKind::None) return {};
+  if (std::none_of(res.channel_summaries.begin(), res.channel_summaries.end(),
+                   [](const ChannelSummary& cs) { return cs.noise.has_value(); }))
+    return {};
+  const Eigen::MatrixXd& b = cov.covariance;
+  Eigen::VectorXd total = Eigen::VectorXd::Zero(idx(k)), spread = Eigen::VectorXd::Zero(idx(k));
+  for (const auto& cs : res.channel_summaries) {
+    if (std::find(lp.rows.channels.begin(), lp.rows.channels.end(), cs.channel) ==
+        lp.rows.channels.end())
+      continue;
+    LocalProblem one = lp;
+    one.rows.channels = {cs.channel};
+    const auto jf = jacobian_factor(one, x);
+    if (!jf) return {};
+    const Eigen::MatrixXd g = jf->r.transpose() * jf->r;
+    const Eigen::MatrixXd bgb = b * g * b;
+    total += bgb.diagonal();
+    if (!cs.noise) continue;
+    const double p =
+        cs.noise->kind == NoiseModelKind::Constant || cs.noise->kind == NoiseModelKind::Relative
+            ? 1.0
+            : 2.0;
+    const double nu = std::max(1.0, static_cast<double>(cs.rows) - (b * g).trace() - p);
+    spread += bgb.diagonal().cwiseAbs2() / nu;
+  }
+  std::vector<double> out(k, static_cast<double>(res.dof));
+  for (std::size_t j = 0; j < k; ++j)
+    if (spread(idx(j)) > 0.0 && total(idx(j)) > 0.0)
+      out[j] = std::min(out[j], total(idx(j)) * total(idx(j)) / spread(idx(j)));
+  return out;
 }
 
 // Correlation among the parameters with a standard error.
@@ -57,10 +102,19 @@ void add_correlation(const LocalProblem& lp, const JacobianCovariance& cov, FitR
 
 // HC3 standard errors for the determined free parameters.
 void add_sandwich_errors(const LocalProblem& lp, const ParamVector& x,
-                         const JacobianCovariance& cov, FitResult& res) {
+                         const JacobianCovariance& cov, double cov_scale, FitResult& res,
+                         FitStatisticsDetail* detail) {
   if (lp.free.empty() || res.dof == 0) return;
-  const auto meat = sandwich_meat(lp, x, cov.covariance);
+  Eigen::MatrixXd spread;
+  const auto meat = sandwich_meat(lp, x, cov.covariance, &spread);
   if (!meat) return;
+  if (detail)
+    for (std::size_t j = 0; j < lp.free.size(); ++j) {
+      const double sum_q = spread(idx(j), 0), sum_q2 = spread(idx(j), 1);
+      if (!cov.determined[j] || !(sum_q > 0.0 && sum_q2 > 0.0)) continue;
+      detail->sandwich_expected[j] = sum_q * cov_scale;
+      detail->sandwich_dof[j] = sum_q * sum_q / sum_q2;
+    }
   const Eigen::MatrixXd sandwich = cov.covariance * *meat * cov.covariance;
   for (std::size_t j = 0; j < lp.free.size(); ++j) {
     if (!cov.determined[j]) continue;
@@ -173,7 +227,7 @@ InformationCriteria information_criteria(double chi2, std::size_t n, std::size_t
 
 std::vector<int> add_fit_statistics(const LocalProblem& lp, const ParamVector& x,
                                     const ParamVector& start, const NoiseTerms& noise,
-                                    FitResult& res) {
+                                    FitResult& res, FitStatisticsDetail* detail) {
   const Dataset& data = *lp.rows.data;
   // The whitened Jacobian at the optimum (free columns), as its triangular factor.
   const std::size_t k = lp.free.size();
@@ -207,10 +261,20 @@ std::vector<int> add_fit_statistics(const LocalProblem& lp, const ParamVector& x
 
   const JacobianCovariance cov = covariance_from_jacobian(jacobian_r);
   std::vector<int> undetermined;
-  add_parameter_estimates(lp, x, start, cov, absolute_sigma ? 1.0 : res.reduced_chi2, res,
-                          undetermined);
+  const double cov_scale = absolute_sigma ? 1.0 : res.reduced_chi2;
+  const std::vector<double> interval_dof = satterthwaite_dof(lp, x, cov, res);
+  add_parameter_estimates(lp, x, start, cov, cov_scale, interval_dof, res, undetermined);
   add_correlation(lp, cov, res);
-  add_sandwich_errors(lp, x, cov, res);
+  if (detail) {
+    detail->covariance = cov.covariance * (res.dof > 0 ? cov_scale : 0.0);
+    detail->determined = cov.determined;
+    detail->sandwich_expected.assign(k, std::nullopt);
+    detail->sandwich_dof.assign(k, std::nullopt);
+    detail->interval_dof.assign(k, static_cast<double>(res.dof));
+    for (std::size_t j = 0; j < interval_dof.size() && j < k; ++j)
+      detail->interval_dof[j] = interval_dof[j];
+  }
+  add_sandwich_errors(lp, x, cov, cov_scale, res, detail);
   add_predictions(lp, x, res);
   add_channel_fit_quality(data, res);
   return undetermined;

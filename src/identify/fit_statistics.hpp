@@ -8,6 +8,8 @@
 
 #include <frictionid/fit_result.hpp>
 
+#include <Eigen/Core>
+
 #include "identify/local_problem.hpp"
 
 namespace frictionid {
@@ -19,12 +21,27 @@ struct NoiseTerms {
   int parameters = 0;
 };
 
+// What the warnings need beyond FitResult, per free parameter in lp.free's order.
+struct FitStatisticsDetail {
+  // The covariance of the free parameters as the standard errors use it (scaled by the reduced
+  // chi² where res says so); rows and columns of undetermined parameters are 0.
+  Eigen::MatrixXd covariance;
+  std::vector<bool> determined;
+  // The HC3 variance a correct noise model leads one to expect, sum_i q_il (times the reduced
+  // chi² where the covariance is scaled), and the degrees of freedom of its chi² approximation,
+  // (sum_i q_il)^2 / sum_i q_il^2 (Satterthwaite; see sandwich_meat). Absent without HC3.
+  std::vector<std::optional<double>> sandwich_expected, sandwich_dof;
+  // The degrees of freedom of each parameter's interval, (8.6a): n - k, or fewer where the
+  // channels' noise was estimated.
+  std::vector<double> interval_dof;
+};
+
 // Fills res.parameters, correlation, cost, chi2, dof, reduced_chi2, aic, bic, the channel
 // summaries' rmse and r2, eps and fitted. Returns the free parameters the data do not determine.
-// Throws FitError when the model is not finite at x.
+// Throws FitError when the model is not finite at x. Fills `detail` when given.
 std::vector<int> add_fit_statistics(const LocalProblem& lp, const ParamVector& x,
                                     const ParamVector& start, const NoiseTerms& noise,
-                                    FitResult& res);
+                                    FitResult& res, FitStatisticsDetail* detail = nullptr);
 
 // chi² of the problem at x without the loss (the cost keeps the loss's robustification).
 double plain_chi2(const LocalProblem& lp, const ParamVector& x);

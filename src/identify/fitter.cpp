@@ -81,12 +81,16 @@ FittedRun fit_keeping_problem(const FitSettings& settings, const Dataset& data,
   NoiseRefinement noise;
   NoiseTerms noise_terms;
   run.problem = lp;
-  // A noise model needs residual degrees of freedom to be estimated from.
-  std::size_t observations = 0;
-  for (const auto& cs : res.channel_summaries) observations += cs.rows;
-  if (observations > 2 * lp.free.size() + 2 &&
-      std::any_of(res.channels.begin(), res.channels.end(),
-                  [&](Channel c) { return noise_estimated(s, data, c); })) {
+  // A channel's noise is estimated from its own rows: every channel to be estimated needs more
+  // than k + 2 of them (a degree of freedom left after its share of the k parameters and its
+  // own sigma), or the fixed scales stay with one sigma pooled over all cells (§8.10).
+  bool enough_rows = true, any_estimated = false;
+  for (const auto& cs : res.channel_summaries)
+    if (noise_estimated(s, data, cs.channel)) {
+      any_estimated = true;
+      enough_rows &= cs.rows > lp.free.size() + 2;
+    }
+  if (any_estimated && enough_rows) {
     noise = refine_noise(lp, best, res, observer);
     best = noise.fit;
     run.noise_sigma =
@@ -103,16 +107,24 @@ FittedRun fit_keeping_problem(const FitSettings& settings, const Dataset& data,
 
   run.x = best.x;
   const LocalProblem* final_problem = &run.problem;
+  FitStatisticsDetail detail;
   const std::vector<int> undetermined =
-      add_fit_statistics(*final_problem, best.x, search.start, noise_terms, res);
+      add_fit_statistics(*final_problem, best.x, search.start, noise_terms, res, &detail);
   res.intervals = s.intervals;
   res.interval_method = s.intervals == IntervalMethod::Model      ? "model"
                         : s.intervals == IntervalMethod::Sandwich ? "sandwich"
                                                                   : "profile";
-  if (s.intervals == IntervalMethod::Profile)
+  if (s.intervals == IntervalMethod::Profile) {
     add_profile_intervals(*final_problem, best.x, res, observer);
+  } else {
+    // Nearly collinear parameters: their symmetric intervals may miss on one side; the profile
+    // follows the cost's valley (§8.12), so it is computed for them whatever the method.
+    const auto correlated = strongly_correlated_parameters(res);
+    if (!correlated.empty())
+      add_profile_intervals(*final_problem, best.x, res, observer, &correlated);
+  }
   add_bootstrap_intervals(*final_problem, best.x, s.bootstrap, s.seed, res, observer);
-  add_fit_warnings(*final_problem, best.x, undetermined, res);
+  add_fit_warnings(*final_problem, best.x, undetermined, res, &detail);
 
   using seconds = std::chrono::duration<double>;
   const auto t_end = clock::now();

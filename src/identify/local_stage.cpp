@@ -168,24 +168,40 @@ struct JetPasses {
 
   // The meat of the HC3 sandwich: sum over residuals of J_i^T J_i r_i^2 / (1 - h_ii)^2 with the
   // leverage h_ii = J_i B J_i^T, B = (J^T J)^-1 (the bread). Chunks are summed in order.
+  // With `spread`, also per parameter l the sums of q_il = (J_i B)_l^2 / (1 - h_ii) and of
+  // q_il^2 (columns 0 and 1): (B M B)_ll = sum_i q_il u_i with u_i = r_i^2/(1 - h_ii).
   static bool meat(const LocalProblem& p, const ParamVector& x, const Eigen::MatrixXd& bread,
-                   Eigen::MatrixXd& out) {
+                   Eigen::MatrixXd& out, Eigen::MatrixXd* spread) {
     // Dynamic sizes: one pass per fit, and GCC's bounds analysis trips over 1 x 1 fixed ones.
     std::vector<Eigen::MatrixXd> part(problem_chunks(p), Eigen::MatrixXd::Zero(N, N));
+    std::vector<Eigen::MatrixXd> part_q(spread ? problem_chunks(p) : 0,
+                                        Eigen::MatrixXd::Zero(N, 2));
     std::vector<double> sum_sq;
     const bool ok = pass(p, x, sum_sq, [&](std::size_t c, const Block& rows) {
       const Eigen::MatrixXd j = rows.template leftCols<N>();
-      const Eigen::VectorXd h = (j * bread).cwiseProduct(j).rowwise().sum();
+      const Eigen::MatrixXd jb = j * bread;
+      const Eigen::VectorXd h = jb.cwiseProduct(j).rowwise().sum();
       Eigen::VectorXd w(j.rows());
       for (Eigen::Index i = 0; i < j.rows(); ++i) {
-        const double r = rows(i, N) / (1.0 - std::min(h[i], 1.0 - 1e-12));
+        const double one_minus_h = 1.0 - std::min(h[i], 1.0 - 1e-12);
+        const double r = rows(i, N) / one_minus_h;
         w[i] = r * r;
+        if (spread)
+          for (Eigen::Index l = 0; l < N; ++l) {
+            const double q = jb(i, l) * jb(i, l) / one_minus_h;
+            part_q[c](l, 0) += q;
+            part_q[c](l, 1) += q * q;
+          }
       }
       part[c] = j.transpose() * w.asDiagonal() * j;
     });
     if (!ok) return false;
     out = Eigen::MatrixXd::Zero(N, N);
     for (const auto& m : part) out += m;
+    if (spread) {
+      *spread = Eigen::MatrixXd::Zero(N, 2);
+      for (const auto& m : part_q) *spread += m;
+    }
     return true;
   }
 
@@ -338,8 +354,8 @@ std::optional<JacobianFactor> factor_n(const LocalProblem& p, const ParamVector&
 }
 template <int N>
 bool meat_n(const LocalProblem& p, const ParamVector& x, const Eigen::MatrixXd& bread,
-            Eigen::MatrixXd& out) {
-  return JetPasses<N>::meat(p, x, bread, out);
+            Eigen::MatrixXd& out, Eigen::MatrixXd* spread) {
+  return JetPasses<N>::meat(p, x, bread, out, spread);
 }
 
 // Jet width is a compile-time constant: dispatch on the number of free parameters.
@@ -425,14 +441,15 @@ std::optional<JacobianFactor> jacobian_factor(const LocalProblem& p, const Param
 }
 
 std::optional<Eigen::MatrixXd> sandwich_meat(const LocalProblem& p, const ParamVector& x,
-                                             const Eigen::MatrixXd& bread) {
-  using Meat =
-      bool (*)(const LocalProblem&, const ParamVector&, const Eigen::MatrixXd&, Eigen::MatrixXd&);
+                                             const Eigen::MatrixXd& bread,
+                                             Eigen::MatrixXd* spread) {
+  using Meat = bool (*)(const LocalProblem&, const ParamVector&, const Eigen::MatrixXd&,
+                        Eigen::MatrixXd&, Eigen::MatrixXd*);
   static constexpr Meat meats[kParamCount] = {meat_n<1>, meat_n<2>, meat_n<3>, meat_n<4>, meat_n<5>,
                                               meat_n<6>, meat_n<7>, meat_n<8>, meat_n<9>};
   check_width(p.free.size());
   Eigen::MatrixXd out;
-  if (!meats[p.free.size() - 1](p, x, bread, out)) return std::nullopt;
+  if (!meats[p.free.size() - 1](p, x, bread, out, spread)) return std::nullopt;
   return out;
 }
 

@@ -74,8 +74,12 @@ std::optional<JacobianFactor> jacobian_factor(const LocalProblem& p, const Param
 
 // The meat of the HC3 sandwich covariance B M B at x: M = sum over residuals of
 // J_i^T J_i r_i^2 / (1 - h_ii)^2, h_ii = J_i B J_i^T, for the bread B = (J^T J)^-1 of the free
-// parameters. nullopt where the model is not finite.
+// parameters. nullopt where the model is not finite. With `spread` (k x 2), per free parameter l
+// the sums over residuals of q_il = (J_i B)_l^2/(1 - h_ii) and of q_il^2: (B M B)_ll is
+// sum_i q_il u_i with u_i = r_i^2/(1 - h_ii), which a correct noise model makes ~chi^2_1, so
+// these give the HC3 variance's expectation and sampling spread under that model (§8.11).
 std::optional<Eigen::MatrixXd> sandwich_meat(const LocalProblem& p, const ParamVector& x,
-                                             const Eigen::MatrixXd& bread);
+                                             const Eigen::MatrixXd& bread,
+                                             Eigen::MatrixXd* spread = nullptr);
 
 }  // namespace frictionid

@@ -321,6 +321,9 @@ ChannelNoise estimate_channel_noise(std::vector<double> fitted, std::vector<doub
       const ChannelNoise r = relative_noise(fitted, residual, sums);
       n = c;
       if (r.bic < n.bic) n = r;
+      // Too few rows for a two-term variance function: one sigma pooled over the channel's
+      // rows, constant or proportional (§8.10).
+      if (fitted.size() < kTwoTermNoiseRows) break;
       // A two-term form is estimated in full only where it may beat the best so far.
       const auto a = two_term_noise(NoiseModelKind::Affine, fitted, residual, c, r, sums, n.bic);
       if (a && a->bic < n.bic) n = *a;

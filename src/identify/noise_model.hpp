@@ -42,6 +42,10 @@ double noise_sigma(const ChannelNoise& n, double y);
 // Auto estimates a two-term form in full only where it may beat the best BIC before it
 // (docs/physics.md §8.10): the choice and the estimate are those of estimating all four.
 // Takes the vectors by value: a caller that moves them in saves their copies.
+// Auto chooses among the two-term forms only for a channel of at least this many rows; below,
+// between constant and relative.
+inline constexpr std::size_t kTwoTermNoiseRows = 20;
+
 ChannelNoise estimate_channel_noise(std::vector<double> fitted, std::vector<double> residual,
                                     NoiseModelKind kind, double dof_factor = 1.0);
 

@@ -108,17 +108,23 @@ NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, 
           s.noise_model == NoiseModelKind::Auto ? NoiseModelKind::Auto : s.noise_model;
       noise[ci] = estimate_channel_noise(std::move(y), std::move(e), kind, dof_factor);
       step.parameters = noise_parameters(noise[ci].kind);
-      // No sigma below rounding: noise-free data would otherwise divide by zero.
-      const double floor = std::max(1e-15 * peak, 1e-300);
+      double y2 = 0.0;
+      for (std::size_t i = 0; i < data.rows(); ++i)
+        if (data.present[ci][i] && peak > 0.0)
+          y2 += (fitted[ci][i] / peak) * (fitted[ci][i] / peak);
+      // No sigma below kNoiseFreeSigma of the channel's RMS fitted value: a noise-free channel
+      // (residuals at rounding) is treated as exact to that level, not as infinitely precise,
+      // which would leave the other channels' parameters below the covariance's rank cut.
+      const double floor = std::max(
+          {kNoiseFreeSigma * peak * std::sqrt(y2 / static_cast<double>(n)), 1e-15 * peak, 1e-300});
       sigma.assign(data.rows(), std::nan(""));
-      double largest = 0.0, y2 = 0.0;
+      double largest = 0.0;
       LogSum log_sigma;
       for (std::size_t i = 0; i < data.rows(); ++i)
         if (data.present[ci][i]) {
           sigma[i] = std::max(noise_sigma(noise[ci], fitted[ci][i]), floor);
           log_sigma.add(sigma[i]);
           largest = std::max(largest, sigma[i]);
-          if (peak > 0.0) y2 += (fitted[ci][i] / peak) * (fitted[ci][i] / peak);
         }
       step.log_det = 2.0 * log_sigma.sum();
       // The channel's representative sigma: the RMS over its rows, relative to the largest.

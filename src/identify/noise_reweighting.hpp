@@ -10,6 +10,11 @@
 
 namespace frictionid {
 
+// An estimated sigma is floored at this share of the channel's RMS fitted value: a channel whose
+// residuals lie below it (a noise-free channel, residuals at rounding) is treated as exact to
+// that level (docs/physics.md §8.10).
+inline constexpr double kNoiseFreeSigma = 1e-6;
+
 // Whether channel c's noise is estimated (rather than taken from its sigma column).
 bool noise_estimated(const FitSettings& s, const Dataset& data, Channel c);
 

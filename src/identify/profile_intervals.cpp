@@ -57,6 +57,18 @@ double profile_side(const LocalProblem& lp, int i, const ParamVector& x, double 
 
 }  // namespace
 
+std::vector<std::string> strongly_correlated_parameters(const FitResult& res) {
+  std::vector<std::string> out;
+  const std::size_t n = res.correlation_names.size();
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = 0; b < n; ++b)
+      if (a != b && std::fabs(res.correlation[a][b]) > kStrongCorrelation) {
+        out.push_back(res.correlation_names[a]);
+        break;
+      }
+  return out;
+}
+
 double profile_cost(const LocalProblem& lp, int i, double v, ParamVector& warm,
                     FitObserver* observer) {
   LocalProblem held = lp;
@@ -71,7 +83,7 @@ double profile_cost(const LocalProblem& lp, int i, double v, ParamVector& warm,
 }
 
 void add_profile_intervals(const LocalProblem& lp, const ParamVector& x, FitResult& res,
-                           FitObserver* observer) {
+                           FitObserver* observer, const std::vector<std::string>* only) {
   if (res.dof == 0) return;
   const double tq = student_t_quantile(0.975, static_cast<double>(res.dof));
   const double scale = res.covariance_scaled_by_reduced_chi2 ? res.reduced_chi2 : 1.0;
@@ -79,6 +91,7 @@ void add_profile_intervals(const LocalProblem& lp, const ParamVector& x, FitResu
   const double target = res.cost + 0.5 * tq * tq * scale;
   for (auto& e : res.parameters) {
     if (e.fixed || !e.std_error || !(*e.std_error > 0.0)) continue;
+    if (only && std::find(only->begin(), only->end(), e.name) == only->end()) continue;
     const int i = *param_index(e.name);
     std::array<double, 2> ci{};
     for (int side = 0; side < 2; ++side) {

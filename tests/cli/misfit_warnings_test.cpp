@@ -42,6 +42,10 @@ TEST(MisfitWarnings, AFitMissingTheLateralSlipColumnSaysItExplainsNoneOfTy) {
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(warnings_of(d / "out").find("of the variation of T_y"), std::string::npos)
       << warnings_of(d / "out");
+  // The residuals keep one sign over stretches of each sweep: the runs test names the misfit.
+  EXPECT_NE(warnings_of(d / "out").find("residuals of T_y have structure against eps"),
+            std::string::npos)
+      << warnings_of(d / "out");
 }
 
 TEST(MisfitWarnings, ACorrectFitOfLateralSlipHasNoUnexplainedChannel) {
@@ -53,6 +57,8 @@ TEST(MisfitWarnings, ACorrectFitOfLateralSlipHasNoUnexplainedChannel) {
   EXPECT_EQ(warnings_of(d / "out").find("of the variation of"), std::string::npos)
       << warnings_of(d / "out");
   EXPECT_EQ(warnings_of(d / "out").find("beyond 6 sigma"), std::string::npos);
+  EXPECT_EQ(warnings_of(d / "out").find("have structure against eps"), std::string::npos)
+      << warnings_of(d / "out");
 }
 
 TEST(MisfitWarnings, MostRowsBeyondSixSigmaAreAMisfitNotOutliers) {

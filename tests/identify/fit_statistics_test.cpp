@@ -11,7 +11,10 @@
 #include <Eigen/Dense>
 
 #include <frictionid/fitter.hpp>
+#include <frictionid/model_variant.hpp>
 #include <frictionid/synthetic_data.hpp>
+
+#include "identify/statistics.hpp"
 
 namespace frictionid {
 namespace {
@@ -224,10 +227,11 @@ void expect_covariance_from_jacobian(const TinyFit& t) {
 }
 
 TEST(Covariance, OnTooFewRowsForANoiseModelIsSSquaredTimesJtJInverseWithNMinusKDof) {
-  // T_x = f N t(eps; a) alone (docs/physics.md §3), f and a free: 5 observations <= 2 * 2 + 2,
-  // 3 degrees of freedom.
-  expect_covariance_from_jacobian({{Channel::T_x}, {"f", "a"}, 5, {}});
-  // T_x and M_z, f, a and m free: 8 observations, 5 degrees of freedom; whitened per channel.
+  // T_x = f N t(eps; a) alone (docs/physics.md §3), f and a free: 4 rows <= k + 2 = 4 for the
+  // channel, 2 degrees of freedom.
+  expect_covariance_from_jacobian({{Channel::T_x}, {"f", "a"}, 4, {}});
+  // T_x and M_z, f, a and m free: 4 rows per channel <= 3 + 2, 8 observations, 5 degrees of
+  // freedom; whitened per channel.
   expect_covariance_from_jacobian({{Channel::T_x, Channel::M_z}, {"f", "a", "m"}, 4, {}});
 }
 
@@ -240,6 +244,74 @@ TEST(Covariance, OnTooFewRowsWithSigmaColumnsOnEveryChannelIsNotRescaled) {
   expect_covariance_from_jacobian({{Channel::T_x}, {"f", "a"}, 5, {Channel::T_x}});
   expect_covariance_from_jacobian(
       {{Channel::T_x, Channel::M_z}, {"f", "a", "m"}, 4, {Channel::T_x, Channel::M_z}});
+}
+
+}  // namespace
+}  // namespace frictionid
+
+namespace frictionid {
+namespace {
+
+FitResult fit_exact_rows(std::size_t rows, bool sigma_columns) {
+  using Law = model::PressureLaw<double>;
+  const Law law = Law::hertz();
+  const auto truth = default_parameters(law, 0.9, 1.15, 0.08);
+  SyntheticDesign design;
+  design.rows = rows;
+  const Dataset d = generate_dataset(ModelKind::Exact, law, truth, design,
+                                     NoiseSpec{0.01, 0.0, sigma_columns}, 3);
+  FitSettings s = FitSettings::defaults(ModelKind::Exact, law, "hertz");
+  s.global_evaluations = 500;
+  return Fitter(s).fit(d);
+}
+
+// The t quantile of each interval, read back from it.
+double interval_t(const ParameterEstimate& e) {
+  return ((*e.ci95)[1] - e.value) / *e.std_error;
+}
+
+// Sigma columns are known: every interval uses t(0.975, n - k).
+TEST(IntervalDof, SigmaColumnsKeepNMinusK) {
+  const FitResult r = fit_exact_rows(8, true);
+  const double t = student_t_quantile(0.975, static_cast<double>(r.dof));
+  for (const auto& e : r.parameters)
+    if (e.std_error) {
+      EXPECT_NEAR(interval_t(e), t, 1e-9 * t) << e.name;
+    }
+}
+
+// Each channel's sigma estimated from its 8 rows: the intervals' degrees of freedom are fewer
+// than n - k = 29 (Satterthwaite over the channels), never more, and on 600 rows per
+// channel close to n - k.
+TEST(IntervalDof, EstimatedNoiseOnFewRowsWidensTheIntervals) {
+  const FitResult small = fit_exact_rows(8, false);
+  ASSERT_GT(small.noise_iterations, 0);
+  const double t_nk = student_t_quantile(0.975, static_cast<double>(small.dof));
+  for (const auto& e : small.parameters) {
+    ASSERT_TRUE(e.std_error) << e.name;
+    // Fewer than n - k: t(0.975, 29) = 2.045, t(0.975, 20) = 2.086.
+    EXPECT_GT(interval_t(e), 1.01 * t_nk) << e.name;
+  }
+  const FitResult large = fit_exact_rows(600, false);
+  const double t_large = student_t_quantile(0.975, static_cast<double>(large.dof));
+  for (const auto& e : large.parameters) {
+    EXPECT_GE(interval_t(e), t_large * (1 - 1e-12)) << e.name;
+    EXPECT_LT(interval_t(e), t_large * 1.002) << e.name;
+  }
+  EXPECT_GT(t_nk, 0.0);
+}
+
+// Rows per channel, not cells, decide whether a noise model is estimated: 5 rows of 4 channels
+// (20 cells) with 3 free parameters leave the fixed scales and one pooled sigma.
+TEST(IntervalDof, TooFewRowsPerChannelPoolOneSigma) {
+  const FitResult r = fit_exact_rows(5, false);
+  EXPECT_EQ(r.noise_iterations, 0);
+  EXPECT_TRUE(r.covariance_scaled_by_reduced_chi2);
+  const double t = student_t_quantile(0.975, static_cast<double>(r.dof));
+  for (const auto& e : r.parameters)
+    if (e.std_error) {
+      EXPECT_NEAR(interval_t(e), t, 1e-9 * t) << e.name;
+    }
 }
 
 }  // namespace
