@@ -2,6 +2,7 @@
 #include "identify/number_text.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <array>
 #include <cmath>
 #include <set>
@@ -44,6 +45,10 @@ double rms_fitted(const FitResult& res, const Dataset& d, int c) {
 
 // The one-sided tail of 3 sigma of a normal: the coefficient-vs-law test's threshold.
 constexpr double kLawTail = 0.0013498980316301;
+
+// A coefficient correlated beyond this with another parameter lies in a curved cost valley,
+// where the law warning confirms the linear test by the cost's profile.
+constexpr double kCurvedValley = 0.95;
 
 // A coefficient whose standard error exceeds this share of its value is poorly determined.
 constexpr double kPoorRelativeError = 0.1;
@@ -246,6 +251,20 @@ void warn_closed_form_coefficients(const LocalProblem& lp, const ParamVector& x,
     return static_cast<Eigen::Index>(std::find(lp.free.begin(), lp.free.end(), i) -
                                      lp.free.begin());
   };
+  // Whether parameter i has |r| > kCurvedValley with another free parameter (true when the
+  // covariance is not at hand).
+  auto strongly_correlated = [&](int i) {
+    const auto k = static_cast<Eigen::Index>(lp.free.size());
+    if (!detail || detail->covariance.rows() != k) return true;
+    const Eigen::Index ci = free_column(i);
+    const Eigen::MatrixXd& c = detail->covariance;
+    for (Eigen::Index j = 0; j < k; ++j) {
+      if (j == ci) continue;
+      const double r = c(ci, j) / std::sqrt(c(ci, ci) * c(j, j));
+      if (!(std::fabs(r) <= kCurvedValley)) return true;
+    }
+    return false;
+  };
   // A difference the standard error explains is no news: warn beyond 3 standard errors.
   for (const auto& [i, v] : implied) {
     const ParameterEstimate* e = res.parameter(param_names()[i]);
@@ -278,8 +297,9 @@ void warn_closed_form_coefficients(const LocalProblem& lp, const ParamVector& x,
     // Nearly collinear coefficients (kappa, b, m on eps > 1 alone) have a curved cost valley
     // where the linear standard error misleads: the profile of the cost at the law's value
     // (the likelihood ratio, kappa and the rest refitted) must agree that it lies beyond the
-    // same threshold.
-    if (v > s.params[i].lower && v < s.params[i].upper) {
+    // same threshold. Elsewhere the valley is close to its quadratic model and the refit (a
+    // local fit over all rows) is not worth its cost.
+    if (strongly_correlated(i) && v > s.params[i].lower && v < s.params[i].upper) {
       ParamVector warm = x;
       const double scale = res.covariance_scaled_by_reduced_chi2 ? res.reduced_chi2 : 1.0;
       const double held = profile_cost(lp, i, v, warm, nullptr);
@@ -353,25 +373,39 @@ void warn_noise_estimates(FitResult& res) {
                              "; the weights of its rows and the standard errors may be off");
 }
 
-// Whether the rows of a channel sit in sweeps: rows with the same load, radius, slip direction,
-// spin sign and tilt sign form one group, ordered by eps.
-std::vector<std::vector<std::size_t>> eps_sweeps(const Dataset& d, const FitResult& res, int c) {
+// The rows in sweeps: rows with the same load, radius, slip direction, spin sign and tilt sign
+// form one sweep, ordered by eps (ties by row). Every channel's sweeps are this order with its
+// missing rows left out, so it is sorted once.
+struct SweepOrder {
   using Key = std::array<double, 5>;
-  std::vector<std::pair<Key, std::size_t>> keyed;
+  std::vector<std::pair<Key, std::size_t>> rows;
+};
+
+SweepOrder sweep_order(const Dataset& d, const FitResult& res) {
+  SweepOrder o;
+  o.rows.reserve(d.rows());
   for (std::size_t i = 0; i < d.rows(); ++i) {
-    if (!d.present[c][i]) continue;
     const double angle = std::round(std::atan2(d.v_y[i], d.v_x[i]) * 1e6);
-    keyed.push_back(
-        {Key{d.N[i], d.R[i], angle, d.omega[i] < 0.0 ? -1.0 : 1.0, d.tilt_sign_at(i)}, i});
+    o.rows.push_back(
+        {SweepOrder::Key{d.N[i], d.R[i], angle, d.omega[i] < 0.0 ? -1.0 : 1.0, d.tilt_sign_at(i)},
+         i});
   }
-  std::stable_sort(keyed.begin(), keyed.end(), [&](const auto& a, const auto& b) {
+  std::sort(o.rows.begin(), o.rows.end(), [&](const auto& a, const auto& b) {
     if (a.first != b.first) return a.first < b.first;
-    return res.eps[a.second] < res.eps[b.second];
+    if (res.eps[a.second] != res.eps[b.second]) return res.eps[a.second] < res.eps[b.second];
+    return a.second < b.second;
   });
+  return o;
+}
+
+std::vector<std::vector<std::size_t>> eps_sweeps(const Dataset& d, const SweepOrder& o, int c) {
   std::vector<std::vector<std::size_t>> groups;
-  for (std::size_t k = 0; k < keyed.size(); ++k) {
-    if (k == 0 || keyed[k].first != keyed[k - 1].first) groups.emplace_back();
-    groups.back().push_back(keyed[k].second);
+  const SweepOrder::Key* last = nullptr;
+  for (const auto& [key, i] : o.rows) {
+    if (!d.present[c][i]) continue;
+    if (!last || key != *last) groups.emplace_back();
+    groups.back().push_back(i);
+    last = &key;
   }
   return groups;
 }
@@ -382,12 +416,14 @@ std::vector<std::vector<std::size_t>> eps_sweeps(const Dataset& d, const FitResu
 // misfit's size, not its order.
 void warn_structured_residuals(const LocalProblem& lp, FitResult& res) {
   const Dataset& d = *lp.rows.data;
+  std::optional<SweepOrder> order;
   for (const auto& cs : res.channel_summaries) {
     const int c = static_cast<int>(cs.channel);
     if (cs.rows < kRunsTestRows || !cs.rmse ||
         !(*cs.rmse > kNoiseFreeSigma * rms_fitted(res, d, c)))
       continue;
-    auto sweeps = eps_sweeps(d, res, c);
+    if (!order) order = sweep_order(d, res);
+    auto sweeps = eps_sweeps(d, *order, c);
     std::size_t grouped = 0;
     for (const auto& g : sweeps) grouped += g.size() > 1 ? g.size() : 0;
     // Rows that share no sweep (a load per row, say): one sequence ordered by eps.

@@ -170,7 +170,7 @@ const std::vector<WarningCause>& warning_causes() {
        "The fit did not finish",
        "severe: the estimates may not be at the optimum; do not use them as they are.",
        true},
-      {{"far more than outliers", "the fit explains"},
+      {{"far more than outliers", "the fit explains", "have structure against eps"},
        "The model misses a channel",
        "severe: a misfit, not noise; the estimates and their errors describe the wrong model. "
        "Check sign conventions, units and column names, or compare models.",
@@ -179,7 +179,8 @@ const std::vector<WarningCause>& warning_causes() {
        "Outliers",
        "moderate: a few rows far from the fit take weight from their channel; check them.",
        false},
-      {{"noise estimate of", "grow with the measured magnitude", "from the noise model ("},
+      {{"noise estimate of", "grow with the measured magnitude", "from the noise model (",
+        "at rounding level"},
        "Noise model",
        "moderate: the weights of the rows, and the standard errors that rely on them, may be "
        "off; the sandwich errors do not rely on them.",
