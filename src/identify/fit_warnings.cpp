@@ -2,9 +2,9 @@
 #include "identify/number_text.hpp"
 
 #include <algorithm>
-#include <optional>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <string>
 

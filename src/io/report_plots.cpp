@@ -314,6 +314,26 @@ std::vector<std::vector<std::size_t>> group_members(const ColourGroups& groups,
   return members;
 }
 
+// The measured dots, one series per colour group that has rows, at (x_of(i), y_of(i)), thinned
+// as many dots need.
+template <typename X, typename Y>
+std::vector<svg::Series> group_dots(const std::vector<std::vector<std::size_t>>& members,
+                                    const ColourGroups& groups, const X& x_of, const Y& y_of) {
+  std::vector<svg::Series> dots;
+  for (std::size_t g = 0; g < members.size(); ++g) {
+    if (members[g].empty()) continue;
+    svg::Series s(groups.names[g], kPalette[g % kMaxColourGroups], svg::Mark::Dots);
+    s.tag = groups.names[g];
+    for (std::size_t i : members[g]) {
+      s.x.push_back(x_of(i));
+      s.y.push_back(y_of(i));
+    }
+    dots.push_back(std::move(s));
+  }
+  thin_dots(dots);
+  return dots;
+}
+
 // A curve's name for its line's data-tag: "direction=45 spin=-1 tilt=1" (degrees).
 std::string curve_tag(const SlipCurve& k) {
   return fmt::format("direction={:.6g} spin={} tilt={}",
@@ -365,18 +385,9 @@ bool measured_and_fitted(svg::Plot& p, const FitResult& r, const Dataset& d, Cha
                          bool by_load, Factor factor) {
   const int ci = static_cast<int>(c);
   const auto members = group_members(groups, rows);
-  std::vector<svg::Series> dots;
-  for (std::size_t g = 0; g < members.size(); ++g) {
-    if (members[g].empty()) continue;
-    svg::Series s(groups.names[g], kPalette[g % kMaxColourGroups], svg::Mark::Dots);
-    s.tag = groups.names[g];
-    for (std::size_t i : members[g]) {
-      s.x.push_back(axis.x[i]);
-      s.y.push_back(d.value[ci][i] * factor(i));
-    }
-    dots.push_back(std::move(s));
-  }
-  thin_dots(dots);
+  auto dots = group_dots(
+      members, groups, [&](std::size_t i) { return axis.x[i]; },
+      [&](std::size_t i) { return d.value[ci][i] * factor(i); });
   auto lines = fitted_lines(r, d, c, axis, groups, members, by_load, factor);
   const bool drawn = !lines.empty();
   for (auto& s : dots) p.series.push_back(std::move(s));
@@ -526,18 +537,8 @@ const char* kWhitenedLabel = "(measured - fitted) / sigma_i";
 void residual_dots(svg::Plot& p, const std::vector<double>& x, const Whitened& w,
                    const ChannelRows& rows, const ColourGroups& groups) {
   const auto members = group_members(groups, rows);
-  std::vector<svg::Series> dots;
-  for (std::size_t g = 0; g < members.size(); ++g) {
-    if (members[g].empty()) continue;
-    svg::Series s(groups.names[g], kPalette[g % kMaxColourGroups], svg::Mark::Dots);
-    s.tag = groups.names[g];
-    for (std::size_t i : members[g]) {
-      s.x.push_back(x[i]);
-      s.y.push_back(w.z[i]);
-    }
-    dots.push_back(std::move(s));
-  }
-  thin_dots(dots);
+  auto dots = group_dots(
+      members, groups, [&](std::size_t i) { return x[i]; }, [&](std::size_t i) { return w.z[i]; });
   for (auto& s : dots) p.series.push_back(std::move(s));
 }
 
@@ -646,18 +647,9 @@ ReportPlot column_plot(const FitResult& r, const Dataset& d, Channel c, const st
   p.x_label = column;
   p.y_label = fmt::format("{} [{}]", name, channel_unit(c));
   const auto members = group_members(groups, rows);
-  std::vector<svg::Series> dots;
-  for (std::size_t g = 0; g < members.size(); ++g) {
-    if (members[g].empty()) continue;
-    svg::Series s(groups.names[g], kPalette[g % kMaxColourGroups], svg::Mark::Dots);
-    s.tag = groups.names[g];
-    for (std::size_t i : members[g]) {
-      s.x.push_back(x[i]);
-      s.y.push_back(d.value[ci][i]);
-    }
-    dots.push_back(std::move(s));
-  }
-  thin_dots(dots);
+  auto dots = group_dots(
+      members, groups, [&](std::size_t i) { return x[i]; },
+      [&](std::size_t i) { return d.value[ci][i]; });
   for (auto& s : dots) p.series.push_back(std::move(s));
   svg::Series fitted("fitted", "#222222", svg::Mark::Dots);
   fitted.tag = "fitted";

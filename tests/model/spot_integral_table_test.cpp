@@ -167,14 +167,7 @@ SpotIntegrals centred_quadrature(SpotKind kind, const PressureLaw<double>& law, 
       }
     }
   }
-  SpotIntegrals out;
-  for (std::size_t w = 0; w < 3; ++w) {
-    out.ex[w] = acc[w];
-    out.ey[w] = acc[3 + w];
-    out.x_ey[w] = acc[6 + w];
-    out.y_ex[w] = acc[9 + w];
-  }
-  return out;
+  return SpotIntegrals::from_channels(acc.data());
 }
 
 struct Reference {

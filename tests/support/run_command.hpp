@@ -50,10 +50,8 @@ inline SplitResult run_frictionid_split(const std::string& args) {
   const char* exe = std::getenv("FRICTIONID_EXE");
   if (!exe) return {-1, "", "FRICTIONID_EXE not set"};
   const std::filesystem::path err_file =
-      std::filesystem::temp_directory_path() /
-      ("frictionid_stderr_" + std::to_string(::getpid()));
-  const CommandResult r =
-      run_command(std::string(exe) + " " + args + " 2>" + err_file.string());
+      std::filesystem::temp_directory_path() / ("frictionid_stderr_" + std::to_string(::getpid()));
+  const CommandResult r = run_command(std::string(exe) + " " + args + " 2>" + err_file.string());
   std::ifstream in(err_file);
   std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::filesystem::remove(err_file);

@@ -59,14 +59,7 @@ class MapStripIntegrator {
       else
         near_cell(c, cx, cy, gx, gy, acc);
     }
-    SpotIntegrals out;
-    for (std::size_t w = 0; w < 3; ++w) {
-      out.ex[w] = acc[w];
-      out.ey[w] = acc[3 + w];
-      out.x_ey[w] = acc[6 + w];
-      out.y_ex[w] = acc[9 + w];
-    }
-    return out;
+    return SpotIntegrals::from_channels(acc);
   }
 
  private:

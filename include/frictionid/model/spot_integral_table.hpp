@@ -198,14 +198,7 @@ class RectStripIntegrator {
         acc[11] += W * ex[2];
       }
     }
-    SpotIntegrals out;
-    for (std::size_t w = 0; w < 3; ++w) {
-      out.ex[w] = acc[w];
-      out.ey[w] = acc[3 + w];
-      out.x_ey[w] = acc[6 + w];
-      out.y_ex[w] = acc[9 + w];
-    }
-    return out;
+    return SpotIntegrals::from_channels(acc);
   }
 
  private:
@@ -308,14 +301,7 @@ class SpotIntegralTable {
       for (int j = 0; j < kChannels; ++j)
         if ((fx && kOddX[j]) != (fy && kOddY[j])) v[j] = -v[j];
     }
-    SpotIntegrals out;
-    for (std::size_t w = 0; w < 3; ++w) {
-      out.ex[w] = v[w];
-      out.ey[w] = v[3 + w];
-      out.x_ey[w] = v[6 + w];
-      out.y_ex[w] = v[9 + w];
-    }
-    return out;
+    return SpotIntegrals::from_channels(v);
   }
 
   // Whether this table holds the integrals a model of this spot, aspect and law needs (the same

@@ -35,6 +35,19 @@ namespace frictionid::model {
 struct SpotIntegrals {
   std::array<double, 3> ex{}, ey{}, x_ey{}, y_ex{};
 
+  // From twelve values in the order ex[0..2], ey[0..2], x_ey[0..2], y_ex[0..2] (the channels of
+  // the strip integrators' accumulators and of the table).
+  static SpotIntegrals from_channels(const double* v) {
+    SpotIntegrals out;
+    for (std::size_t w = 0; w < 3; ++w) {
+      out.ex[w] = v[w];
+      out.ey[w] = v[3 + w];
+      out.x_ey[w] = v[6 + w];
+      out.y_ex[w] = v[9 + w];
+    }
+    return out;
+  }
+
   SpotIntegrals& operator+=(const SpotIntegrals& o) {
     for (int w = 0; w < 3; ++w) {
       ex[w] += o.ex[w];
