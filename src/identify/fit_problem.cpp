@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <optional>
 #include <stdexcept>
 
 #include "identify/noise_reweighting.hpp"
@@ -25,10 +27,29 @@ bool constant_channel(const Dataset& data, Channel c) {
   return count >= 2;
 }
 
+// The smallest sigma of c's measured rows when every one of them is too large to weigh
+// anything (1/sigma^2 underflows to 0: sigma above about 1e154, or infinite), else nothing.
+// Such a channel would sit in the fit with zero weight: listed as fitted, with R^2 0.
+std::optional<double> weightless_sigma(const Dataset& data, Channel c) {
+  const int ci = static_cast<int>(c);
+  if (!data.has_sigma(c)) return std::nullopt;
+  double smallest = HUGE_VAL;
+  bool any = false;
+  for (std::size_t i = 0; i < data.rows(); ++i) {
+    if (!data.present[ci][i]) continue;
+    const double w = 1.0 / data.sigma[ci][i];
+    if (w * w > 0.0) return std::nullopt;
+    smallest = std::min(smallest, data.sigma[ci][i]);
+    any = true;
+  }
+  return any ? std::optional<double>(smallest) : std::nullopt;
+}
+
 // The channels to fit: the requested ones that some row measures, in canonical order.
 std::vector<Channel> fitted_channels(const Dataset& data, const FitSettings& s,
                                      std::vector<std::string>& warnings,
-                                     std::vector<Channel>& constant) {
+                                     std::vector<Channel>& constant,
+                                     std::vector<Channel>& weightless) {
   std::vector<Channel> requested = s.channels;
   if (requested.empty())
     for (Channel c : kAllChannels)
@@ -45,6 +66,17 @@ std::vector<Channel> fitted_channels(const Dataset& data, const FitSettings& s,
     if (!data.has_channel(c)) {
       warnings.push_back(std::string("channel ") + channel_name(c) +
                          " was requested but no row measures it; it is not fitted");
+    } else if (const auto big =
+                   noise_estimated(s, data, c) ? std::nullopt : weightless_sigma(data, c)) {
+      weightless.push_back(c);
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.3g", *big);
+      warnings.push_back(std::string("channel ") + channel_name(c) +
+                         " left the fit: its sigma column gives every row zero weight (the "
+                         "smallest sigma_" +
+                         channel_name(c) + " is " + buf +
+                         ", and 1/sigma^2 underflows to 0 above about 1e154), so it cannot "
+                         "inform the fit and does not count in the degrees of freedom");
     } else if (noise_estimated(s, data, c) && constant_channel(data, c)) {
       constant.push_back(c);
       warnings.push_back(std::string("every measured value of ") + channel_name(c) +
@@ -97,8 +129,16 @@ ChannelSummary channel_summary(const Dataset& data, Channel c, std::vector<doubl
 }  // namespace
 
 LocalProblem make_fit_problem(const Dataset& data, const FitSettings& s, FitResult& res) {
-  std::vector<Channel> constant;
-  res.channels = fitted_channels(data, s, res.warnings, constant);
+  std::vector<Channel> constant, weightless;
+  res.channels = fitted_channels(data, s, res.warnings, constant, weightless);
+  if (res.channels.empty() && !weightless.empty()) {
+    std::string names;
+    for (Channel c : weightless)
+      names += (names.empty() ? "" : ", ") + std::string(channel_name(c));
+    throw std::invalid_argument("the sigma columns of " + names +
+                                " give every row zero weight (sigma above about 1e154): no "
+                                "channel is left to fit");
+  }
   if (res.channels.empty() && !constant.empty()) {
     std::string names;
     for (Channel c : constant) names += (names.empty() ? "" : ", ") + std::string(channel_name(c));
