@@ -12,6 +12,7 @@
 #include <frictionid/io/compare_report.hpp>
 #include "io/estimate_text.hpp"
 #include "io/html_page.hpp"
+#include "io/palette.hpp"
 #include "io/report_parts.hpp"
 #include "io/svg_plot.hpp"
 
@@ -21,7 +22,6 @@ namespace {
 using html::num_cell;
 using svg::escape;
 
-constexpr const char* kModelColours[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e"};
 constexpr const char* kModelDashes[] = {"", "7 4", "2 3", "9 3 2 3", "4 4"};
 // More curves (slip direction, spin sign, tilt sign) than this: models as dots, not lines.
 constexpr std::size_t kMaxCompareCurves = 24;
@@ -52,7 +52,7 @@ std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d
     p.log_x = true;
     p.y_reference = 0.0;
     if (step > 1) p.notes.push_back(plotted_rows_note(n));
-    svg::Series measured("measured", "#999999", svg::Mark::Dots);
+    svg::Series measured("measured", palette::kBackdrop, svg::Mark::Dots);
     measured.tag = "measured";
     // The plotted rows of each curve (slip_curve), sorted by eps: a model's collapsed
     // predictions along one curve are a line.
@@ -77,7 +77,7 @@ std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d
     for (std::size_t k = 0; k < c.fits.size(); ++k) {
       const auto& fitted = c.fits[k].fitted[ci];
       if (fitted.size() != n) continue;
-      const char* colour = kModelColours[k % 5];
+      const char* colour = palette::series(k);
       if (!lines) {
         svg::Series dots(c.fits[k].model, colour, svg::Mark::Dots);
         dots.tag = c.fits[k].model;

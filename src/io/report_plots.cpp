@@ -21,6 +21,7 @@
 
 #include <frictionid/model_comparison.hpp>
 #include "identify/row_chunks.hpp"
+#include "io/palette.hpp"
 #include "io/svg_plot.hpp"
 #include "io/text.hpp"
 
@@ -30,16 +31,12 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// More distinct values than this in the colouring column are binned: more colours are not told
-// apart.
-constexpr std::size_t kMaxColourGroups = 8;
-constexpr const char* kPalette[kMaxColourGroups] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
-                                                    "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
+// More distinct values than this in the colouring column are binned: one colour of the
+// palette (io/palette.hpp) each, and more colours are not told apart.
+constexpr std::size_t kMaxColourGroups = palette::kSeries.size();
 // Per channel: collapse, measured and fitted, residuals against eps and against the fitted
 // value, normal quantiles.
 constexpr std::size_t kPlotsPerChannel = 5;
-constexpr const char* kMeasuredColour = "#1f77b4";
-constexpr const char* kFittedColour = "#d62728";
 
 const char* channel_unit(Channel c) {
   return (c == Channel::T_x || c == Channel::T_y) ? "N" : "N m";
@@ -322,7 +319,7 @@ std::vector<svg::Series> group_dots(const std::vector<std::vector<std::size_t>>&
   std::vector<svg::Series> dots;
   for (std::size_t g = 0; g < members.size(); ++g) {
     if (members[g].empty()) continue;
-    svg::Series s(groups.names[g], kPalette[g % kMaxColourGroups], svg::Mark::Dots);
+    svg::Series s(groups.names[g], palette::series(g), svg::Mark::Dots);
     s.tag = groups.names[g];
     for (std::size_t i : members[g]) {
       s.x.push_back(x_of(i));
@@ -361,7 +358,7 @@ std::vector<svg::Series> fitted_lines(const FitResult& r, const Dataset& d, Chan
     for (auto& [key, rows] : curves) {
       std::stable_sort(rows.begin(), rows.end(),
                        [&](std::size_t a, std::size_t b) { return axis.x[a] < axis.x[b]; });
-      svg::Series line("", kPalette[g % kMaxColourGroups], svg::Mark::Line);
+      svg::Series line("", palette::series(g), svg::Mark::Line);
       line.outline = true;
       line.tag = groups.names[g] + "; " + curve_tag(std::get<0>(key));
       if (by_load)
@@ -395,7 +392,7 @@ bool measured_and_fitted(svg::Plot& p, const FitResult& r, const Dataset& d, Cha
     for (auto& s : lines) p.series.push_back(std::move(s));
     return true;
   }
-  svg::Series fitted("fitted", "#222222", svg::Mark::Dots);
+  svg::Series fitted("fitted", palette::kReference, svg::Mark::Dots);
   fitted.tag = "fitted";
   fitted.dot_size = 2.2;
   for (std::size_t i : rows.rows) {
@@ -601,14 +598,14 @@ ReportPlot qq_plot(const Whitened& w, Channel c, const ChannelRows& rows) {
   p.notes = rows.notes;
   p.x_label = "standard normal quantile";
   p.y_label = "sorted " + std::string(kWhitenedLabel);
-  svg::Series dots("whitened residuals", kMeasuredColour, svg::Mark::Dots);
+  svg::Series dots("whitened residuals", palette::series(0), svg::Mark::Dots);
   dots.tag = "quantiles";
   const double n = static_cast<double>(z.size());
   for (std::size_t k = 0; k < z.size(); ++k) {
     dots.x.push_back(normal_quantile((static_cast<double>(k) + 0.5) / n));
     dots.y.push_back(z[k]);
   }
-  svg::Series line("y = x", kFittedColour, svg::Mark::Line);
+  svg::Series line("y = x", palette::kReference, svg::Mark::Line);
   line.dash = "6 4";
   if (!z.empty()) {
     const double q = std::max(std::fabs(dots.x.front()), 1.0);
@@ -651,7 +648,7 @@ ReportPlot column_plot(const FitResult& r, const Dataset& d, Channel c, const st
       members, groups, [&](std::size_t i) { return x[i]; },
       [&](std::size_t i) { return d.value[ci][i]; });
   for (auto& s : dots) p.series.push_back(std::move(s));
-  svg::Series fitted("fitted", "#222222", svg::Mark::Dots);
+  svg::Series fitted("fitted", palette::kReference, svg::Mark::Dots);
   fitted.tag = "fitted";
   fitted.dot_size = 2.0;
   for (std::size_t i : rows.rows) {

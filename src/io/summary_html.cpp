@@ -15,6 +15,7 @@
 #include <frictionid/parameters.hpp>
 #include "io/estimate_text.hpp"
 #include "io/html_page.hpp"
+#include "io/palette.hpp"
 #include "io/report_parts.hpp"
 #include "io/summary_columns.hpp"
 #include "io/svg_plot.hpp"
@@ -25,10 +26,9 @@ namespace {
 using html::isolated;
 using svg::escape;
 
-constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
-                                    "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
-// More series than this are drawn as one: a legend of dozens of colours tells nothing apart.
-constexpr std::size_t kMaxSeries = 10;
+// More series than the palette has colours (io/palette.hpp) are drawn as one: a legend of
+// dozens of colours tells nothing apart.
+constexpr std::size_t kMaxSeries = palette::kSeries.size();
 // Error bars reach at most this many times the spread of the values (or the median bar, if
 // larger) beyond them, so that one undetermined parameter (a huge stderr) does not flatten the
 // trend of all the others.
@@ -396,7 +396,7 @@ std::string trend_figure(const Trends& t, const std::string& param, const std::s
   std::vector<svg::Series> dots(n_series), bars(n_series);
   std::size_t clipped = 0;
   for (std::size_t s = 0; s < n_series; ++s) {
-    const std::string colour = kColours[s % (sizeof kColours / sizeof *kColours)];
+    const std::string colour = palette::series(s);
     dots[s] = {t.series_labels[s], colour, svg::Mark::Dots, {}, {}};
     bars[s] = {"", colour, svg::Mark::Line, {}, {}};
   }

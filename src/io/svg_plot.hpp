@@ -23,7 +23,7 @@ struct Series {
         y(std::move(y_)) {}
 
   std::string label;  // legend text; empty keeps the series out of the legend
-  std::string color;  // CSS colour, e.g. "#1f77b4"
+  std::string color;  // CSS colour, e.g. "#0072b2" (io/palette.hpp)
   Mark mark = Mark::Dots;
   std::vector<double> x, y;  // a pair that is not finite (or <= 0 on a log axis) is skipped
   // Written as the data-tag attribute of the series' path (when not empty): which group or

@@ -1,0 +1,122 @@
+// What every page and plot frictionid writes has in common, read from the files of real runs of
+// the built executable: a fit report, a comparison, a batch with a joint fit (summary.html,
+// shared.html and the runs' reports) and a shimmy sweep.
+//   - every series is drawn in a colour of the palette (io/palette.hpp).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "io/palette.hpp"
+#include "support/run_command.hpp"
+#include "support/scratch_dir.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using frictionid::test::read_file;
+using frictionid::test::run_frictionid;
+using frictionid::test::ScratchDir;
+
+class ReportPages : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new ScratchDir("report_pages");
+    const ScratchDir& d = *dir_;
+    const std::string data = d / "data.csv";
+    // Two slip directions and three loads: several colour groups in every plot.
+    const std::vector<std::string> commands = {
+        "generate --model seed --slip-angles 0,45 --rows 300 --noise 0.01 --output " + data,
+        "fit " + data + " --model seed --no-global --report " + (d / "fit"),
+        "compare " + data + " --models seed,corrected --no-global --report " + (d / "compare"),
+        "generate --model seed --rows 200 --noise 0.01 --loads 2000 --seed 2 --output " +
+            (d / "a.csv"),
+        "generate --model seed --rows 200 --noise 0.01 --loads 4000 --seed 3 --output " +
+            (d / "b.csv"),
+        "batch " + (d / "a.csv") + " " + (d / "b.csv") +
+            " --no-global --shared kappa --per-run-reports full --report " + (d / "batch")};
+    for (const auto& c : commands) {
+      const auto r = run_frictionid(c);
+      setup_ok_ = setup_ok_ && r.code == 0;
+      if (r.code != 0) setup_log_ += c + "\n" + r.out + "\n";
+    }
+    fs::create_directories(d.path() / "shimmy");
+    const auto s = run_frictionid(
+        "shimmy --model corrected --pressure uniform --param f=0.8 --N 1000 --R 0.05 --caster 0.1 "
+        "--yaw-inertia 0.5 --yaw-stiffness 2000 --yaw-damping 1 --lateral-mass 20 "
+        "--lateral-stiffness 2e5 --lateral-damping 50 --psi0 0.05 --duration 1 --speed-sweep "
+        "5:30:3 --sweep-dir " +
+        (d / "shimmy"));
+    setup_ok_ = setup_ok_ && s.code == 0;
+    if (s.code != 0) setup_log_ += "shimmy\n" + s.out;
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  void SetUp() override { ASSERT_TRUE(setup_ok_) << setup_log_; }
+
+  // Every file with one of the extensions under the scratch directory, by path. A report
+  // directory is a symlink to a hidden one (docs/design.md §4.3): followed, the hidden names
+  // skipped.
+  static std::map<std::string, std::string> files(const std::set<std::string>& extensions) {
+    std::map<std::string, std::string> out;
+    for (const auto& e : fs::recursive_directory_iterator(
+             dir_->path(), fs::directory_options::follow_directory_symlink)) {
+      const fs::path relative = e.path().lexically_relative(dir_->path());
+      const bool hidden = std::any_of(relative.begin(), relative.end(), [](const fs::path& p) {
+        return p.string().rfind('.', 0) == 0;
+      });
+      if (!hidden && e.is_regular_file() && extensions.count(e.path().extension().string()))
+        out[relative.string()] = read_file(e.path());
+    }
+    return out;
+  }
+
+  static ScratchDir* dir_;
+  static bool setup_ok_;
+  static std::string setup_log_;
+};
+
+ScratchDir* ReportPages::dir_ = nullptr;
+bool ReportPages::setup_ok_ = true;
+std::string ReportPages::setup_log_;
+
+// The <svg> elements of a page or file: each from "<svg" to its "</svg>".
+std::vector<std::string> svg_elements(const std::string& text) {
+  std::vector<std::string> out;
+  for (auto at = text.find("<svg"); at != std::string::npos; at = text.find("<svg", at + 1)) {
+    const auto end = text.find("</svg>", at);
+    out.push_back(text.substr(at, end == std::string::npos ? std::string::npos : end + 6 - at));
+  }
+  return out;
+}
+
+// Every colour in a plot is one of the palette's, its reference black or backdrop grey, or one
+// of the frame's neutral greys and white (background, grid, ticks, notes).
+TEST_F(ReportPages, EverySeriesIsDrawnInAPaletteColour) {
+  std::set<std::string> allowed(frictionid::palette::kSeries.begin(),
+                                frictionid::palette::kSeries.end());
+  allowed.insert({frictionid::palette::kReference, frictionid::palette::kBackdrop});
+  const std::set<std::string> frame = {"#ffffff", "#e3e3e3", "#333333",
+                                       "#888888", "#777777", "#555555"};
+  static const std::regex colour("(stroke|fill)=\"(#[0-9a-fA-F]{6})\"");
+  std::set<std::string> series_colours;
+  for (const auto& [path, text] : files({".svg", ".html"}))
+    for (const std::string& svg : svg_elements(text))
+      for (std::sregex_iterator m(svg.begin(), svg.end(), colour), end; m != end; ++m) {
+        const std::string c = (*m)[2];
+        if (frame.count(c)) continue;
+        EXPECT_TRUE(allowed.count(c)) << path << ": " << c;
+        series_colours.insert(c);
+      }
+  // Several series colours were seen: groups, models, runs.
+  EXPECT_GE(series_colours.size(), 4u);
+}
+
+}  // namespace
