@@ -23,18 +23,6 @@ using html::num_cell;
 using html::text_cell;
 using svg::escape;
 
-std::string correlation_colour(double c) {
-  // White at 0, red towards +1, blue towards -1.
-  const double t = std::min(1.0, std::abs(c));
-  const int base[3] = {255, 255, 255};
-  const int pos[3] = {214, 39, 40}, neg[3] = {31, 119, 180};
-  const int* end = c >= 0 ? pos : neg;
-  int rgb[3];
-  for (int k = 0; k < 3; ++k)
-    rgb[k] = static_cast<int>(std::lround(base[k] + (end[k] - base[k]) * t));
-  return fmt::format("#{:02x}{:02x}{:02x}", rgb[0], rgb[1], rgb[2]);
-}
-
 // An id for a heading: letters, digits, '-' and '_' only.
 std::string anchor(const std::string& s) {
   std::string out = "plots-";
@@ -139,8 +127,9 @@ std::string correlation_cell(const FitResult& r, std::size_t i, std::size_t k) {
   const double c = r.correlation[i][k];
   std::string text = fmt::format("{:.2f}", c);
   if (text == "-0.00") text = "0.00";
-  return fmt::format("<td style=\"background:{};color:{}\" data-value=\"{}\">{}</td>",
-                     correlation_colour(c), std::abs(c) > 0.6 ? "#ffffff" : "#222222", c, text);
+  const std::string background = correlation_colour(c);
+  return fmt::format("<td style=\"background:{};color:{}\" data-value=\"{}\">{}</td>", background,
+                     text_colour_on(background), c, text);
 }
 
 void correlation_section(std::string& h, const FitResult& r) {
@@ -261,6 +250,34 @@ void glossary_section(std::string& h) {
 }
 
 }  // namespace
+
+std::string correlation_colour(double c) {
+  // White at 0, red towards +1, blue towards -1.
+  const double t = std::isfinite(c) ? std::min(1.0, std::abs(c)) : 0.0;
+  const int base[3] = {255, 255, 255};
+  const int pos[3] = {214, 39, 40}, neg[3] = {31, 119, 180};
+  const int* end = c >= 0 ? pos : neg;
+  int rgb[3];
+  for (int k = 0; k < 3; ++k)
+    rgb[k] = static_cast<int>(std::lround(base[k] + (end[k] - base[k]) * t));
+  return fmt::format("#{:02x}{:02x}{:02x}", rgb[0], rgb[1], rgb[2]);
+}
+
+const char* text_colour_on(const std::string& background) {
+  // WCAG 2 relative luminance of an sRGB colour "#rrggbb".
+  double luminance = 1.0;
+  if (background.size() == 7 && background[0] == '#') {
+    const double weight[3] = {0.2126, 0.7152, 0.0722};
+    luminance = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double v = std::stoi(background.substr(1 + 2 * k, 2), nullptr, 16) / 255.0;
+      luminance += weight[k] * (v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+    }
+  }
+  // Contrast (L1 + 0.05) / (L2 + 0.05) against white (L = 1) and against black (L = 0): the
+  // larger is at least 4.58, where the two are equal (L = 0.179).
+  return 1.05 / (luminance + 0.05) >= (luminance + 0.05) / 0.05 ? "#ffffff" : "#000000";
+}
 
 std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots,
                              const Provenance& provenance, const std::string& contact) {

@@ -86,6 +86,15 @@ std::vector<ReportPlot> make_plots(const FitResult& r, const Dataset& d, const R
 // A plot as an HTML <figure>: the inline SVG and a caption linking its file (no final newline).
 std::string plot_figure(const ReportPlot& p);
 
+// The correlation heat map's cell colour for a correlation c in [-1, 1] ("#rrggbb"): white at
+// 0, towards red at +1 and blue at -1.
+std::string correlation_colour(double c);
+
+// The text colour, "#000000" or "#ffffff", with the higher WCAG 2 contrast against the
+// background "#rrggbb" (from its relative luminance): at least 4.58:1 on any colour, above the
+// 4.5:1 of WCAG AA.
+const char* text_colour_on(const std::string& background);
+
 // report.html from the plots make_plots gave.
 std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots,
                              const Provenance& p = {}, const std::string& contact = "circle");

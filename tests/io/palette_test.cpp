@@ -1,5 +1,6 @@
-// The colours of the reports: the categorical palette is Okabe and Ito's, and its colours stay
-// apart for colour-blind readers (simulated).
+// The colours of the reports: the categorical palette is Okabe and Ito's, its colours stay apart
+// for colour-blind readers (simulated), and the correlation heat map's text meets WCAG AA
+// contrast on every colour its ramp can take.
 #include "io/palette.hpp"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,8 @@
 #include <set>
 #include <string>
 #include <vector>
+
+#include "io/report_parts.hpp"
 
 namespace frictionid {
 namespace {
@@ -26,6 +29,16 @@ Rgb linear_rgb(const std::string& hex) {
         v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
   }
   return out;
+}
+
+// WCAG 2's relative luminance and contrast ratio.
+double luminance(const std::string& hex) {
+  const Rgb c = linear_rgb(hex);
+  return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+}
+double contrast(const std::string& a, const std::string& b) {
+  const double la = luminance(a), lb = luminance(b);
+  return (std::max(la, lb) + 0.05) / (std::min(la, lb) + 0.05);
 }
 
 // CIELAB (D65) of linear sRGB.
@@ -102,6 +115,51 @@ TEST(Palette, ColoursStayApartForColourBlindReaders) {
                                           "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
   EXPECT_LT(smallest_difference(tab10, kDeuteranopia), 15.0);
   EXPECT_LT(smallest_difference(tab10, kProtanopia), 15.0);
+}
+
+// Every colour the heat map's ramp can give a cell, from -1 to +1 in steps of 1e-4 (the ramp
+// is rounded to 8 bits per channel, so this reaches every colour it has), carries text of at
+// least 4.5:1 contrast.
+TEST(HeatMap, TextHasAAContrastOnEveryCellColour) {
+  double worst = INFINITY;
+  std::set<std::string> backgrounds;
+  for (int k = -10000; k <= 10000; ++k) {
+    const std::string background = correlation_colour(k * 1e-4);
+    const std::string text = text_colour_on(background);
+    backgrounds.insert(background);
+    worst = std::min(worst, contrast(background, text));
+    ASSERT_GE(contrast(background, text), 4.5) << background << " with " << text;
+  }
+  EXPECT_GT(backgrounds.size(), 300u);  // the ramp was sampled, not one colour
+  EXPECT_GE(worst, 4.5);
+  // The check tells: the former rule (white text beyond |c| = 0.6, else #222222) fails it.
+  double former = INFINITY;
+  for (int k = -100; k <= 100; ++k) {
+    const double c = k * 0.01;
+    former = std::min(former,
+                      contrast(correlation_colour(c), std::abs(c) > 0.6 ? "#ffffff" : "#222222"));
+  }
+  EXPECT_LT(former, 4.5);
+}
+
+// The page uses that choice: every coloured cell of report.html's heat map.
+TEST(HeatMap, ReportCellsCarryTheirContrastingText) {
+  FitResult r;
+  r.model = "seed";
+  r.pressure = "hertz";
+  r.correlation_names = {"f", "kappa", "h"};
+  r.correlation = {{1.0, 0.61, -0.45}, {0.61, 1.0, -0.93}, {-0.45, -0.93, 1.0}};
+  const std::string page = report_html_page(r, {});
+  std::size_t cells = 0;
+  const std::string mark = "<td style=\"background:";
+  for (auto at = page.find(mark); at != std::string::npos; at = page.find(mark, at + 1)) {
+    const std::string background = page.substr(at + mark.size(), 7);
+    const auto text = page.find(";color:", at) + 7;
+    ASSERT_EQ(page[text], '#');
+    EXPECT_GE(contrast(background, page.substr(text, 7)), 4.5) << page.substr(at, 80);
+    ++cells;
+  }
+  EXPECT_EQ(cells, 9u);
 }
 
 }  // namespace
