@@ -105,13 +105,34 @@ void set_ranges(const Plot& p, Axis& ax, Axis& ay) {
   std::tie(ay.lo, ay.hi) = padded_range(std::move(ys), ay.log, 0.06);
 }
 
-// The <svg> start tag, background, title and notes.
+}  // namespace
+
+std::string description(const Plot& p) {
+  std::string d = p.title.empty() ? std::string("Plot") : p.title;
+  if (!p.y_label.empty() || !p.x_label.empty())
+    d += ". " + (p.y_label.empty() ? std::string("values") : p.y_label) + " against " +
+         (p.x_label.empty() ? std::string("x") : p.x_label) + (p.log_x ? " (log scale)" : "");
+  std::vector<std::string> labels;
+  for (const auto& s : p.series)
+    if (!s.label.empty() && std::find(labels.begin(), labels.end(), s.label) == labels.end())
+      labels.push_back(s.label);
+  for (std::size_t i = 0; i < labels.size(); ++i) d += (i ? ", " : ". Series: ") + labels[i];
+  for (const auto& note : p.notes) d += ". " + note;
+  return d + ".";
+}
+
+namespace {
+
+// The <svg> start tag (an image to assistive technology, named by its aria-label and its
+// <title>, the first child), background, title and notes.
 void append_header(std::string& o, const Plot& p) {
   const double W = p.width;
   o += fmt::format(
-      "<svg viewBox=\"0 0 {0} {1}\" width=\"{0}\" height=\"{1}\" font-family=\"sans-serif\" "
-      "font-size=\"11\">\n<rect width=\"{0}\" height=\"{1}\" fill=\"#ffffff\"/>\n",
-      p.width, p.height);
+      "<svg viewBox=\"0 0 {0} {1}\" width=\"{0}\" height=\"{1}\" role=\"img\" "
+      "aria-label=\"{2}\" font-family=\"sans-serif\" font-size=\"11\">\n<title>{3}</title>\n"
+      "<rect width=\"{0}\" height=\"{1}\" fill=\"#ffffff\"/>\n",
+      p.width, p.height, escape(description(p)),
+      escape(p.title.empty() ? description(p) : p.title));
   o += fmt::format(
       "<text x=\"{}\" y=\"17\" text-anchor=\"middle\" font-size=\"14\" "
       "font-weight=\"bold\">{}</text>\n",

@@ -53,8 +53,16 @@ struct Plot {
   int width = 720, height = 440;
 };
 
-// The plot as an <svg> element without a namespace attribute (for inline use in HTML).
+// The plot as an <svg> element without a namespace attribute (for inline use in HTML). The
+// element is accessible as an image: role="img", aria-label="description(p)", and a <title>
+// with the plot's title as its first child.
 std::string render(const Plot& p);
+
+// The plot in words, for its aria-label: the title, what is drawn against what (and a log
+// axis), the legend's series and the notes, e.g. "T_x: collapse, T_x / N against eps. T_x / N
+// (parity sign removed) against eps = v/(|omega| R) (log scale). Series: N = 2000, N = 4000.
+// colour: N." Plain text (not escaped).
+std::string description(const Plot& p);
 
 // An <svg> element from render() as a standalone .svg file (XML declaration and namespace).
 std::string standalone_file(const std::string& svg_element);

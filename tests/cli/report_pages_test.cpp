@@ -1,10 +1,13 @@
 // What every page and plot frictionid writes has in common, read from the files of real runs of
 // the built executable: a fit report, a comparison, a batch with a joint fit (summary.html,
 // shared.html and the runs' reports) and a shimmy sweep.
+//   - every <svg> (inline or a standalone file) is an image to assistive technology: role="img",
+//     a <title> as its first child and an aria-label that says what is plotted;
 //   - every series is drawn in a colour of the palette (io/palette.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <map>
 #include <regex>
@@ -95,6 +98,42 @@ std::vector<std::string> svg_elements(const std::string& text) {
     out.push_back(text.substr(at, end == std::string::npos ? std::string::npos : end + 6 - at));
   }
   return out;
+}
+
+// The attributes of an element's start tag (at the start of `element`); values as written.
+std::map<std::string, std::string> attributes(const std::string& element) {
+  const std::string tag = element.substr(0, element.find('>'));
+  static const std::regex attribute("([A-Za-z_:][-A-Za-z0-9_:.]*)=\"([^\"]*)\"");
+  std::map<std::string, std::string> out;
+  for (std::sregex_iterator m(tag.begin(), tag.end(), attribute), end; m != end; ++m)
+    out[(*m)[1]] = (*m)[2];
+  return out;
+}
+
+TEST_F(ReportPages, EverySvgIsAnImageWithATitleAndALabel) {
+  std::map<std::string, std::size_t> svgs_per_kind;
+  for (const auto& [path, text] : files({".svg", ".html"})) {
+    for (const std::string& svg : svg_elements(text)) {
+      const auto a = attributes(svg);
+      EXPECT_EQ(a.count("role") ? a.at("role") : "", "img") << path;
+      const std::string label = a.count("aria-label") ? a.at("aria-label") : "";
+      // It says what is plotted against what, not just a name.
+      EXPECT_NE(label.find(" against "), std::string::npos) << path << ": " << label;
+      std::size_t first = svg.find('>') + 1;
+      while (first < svg.size() && std::isspace(static_cast<unsigned char>(svg[first]))) ++first;
+      ASSERT_EQ(svg.compare(first, 7, "<title>"), 0) << path << ": " << svg.substr(0, 300);
+      const auto title_end = svg.find("</title>", first);
+      ASSERT_NE(title_end, std::string::npos) << path;
+      EXPECT_GT(title_end, first + 7) << path << ": an empty title";
+      ++svgs_per_kind[fs::path(path).filename().string()];
+    }
+  }
+  // Every kind of page was read, with its plots.
+  for (const char* page :
+       {"report.html", "compare.html", "summary.html", "shared.html", "shimmy.html"})
+    EXPECT_GT(svgs_per_kind[page], 0u) << page;
+  EXPECT_GE(svgs_per_kind["collapse_T_x.svg"], 1u);
+  EXPECT_GE(svgs_per_kind["compare_T_x.svg"], 1u);
 }
 
 // Every colour in a plot is one of the palette's, its reference black or backdrop grey, or one
