@@ -29,7 +29,11 @@ table { border-collapse: collapse; margin: 0.6em 0; display: block; max-width: 1
         overflow-x: auto; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; }
 th { background: #f3f3f3; }
-table.sortable th { cursor: pointer; }
+th > button.sort { font: inherit; font-weight: bold; color: inherit; background: none; border: 0;
+                   padding: 0; margin: 0; cursor: pointer; text-align: inherit; }
+th > button.sort:focus-visible { outline: 2px solid #0072b2; outline-offset: 2px; }
+th[aria-sort="ascending"] > button.sort::after { content: " \25B2"; }
+th[aria-sort="descending"] > button.sort::after { content: " \25BC"; }
 dl.traceability code { overflow-wrap: anywhere; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
 .estimate { white-space: nowrap; }
@@ -40,32 +44,59 @@ figcaption { color: #444; font-size: 0.92em; max-width: 720px; }
 dt { font-weight: bold; margin-top: 0.5em; }
 )";
 
-// Sorting by a click on a column header, and each plot's rendered size written into the DOM
-// (data-rendered-size on its figure), and the page's width beside the window's (data-widths on
-// the body: a wide table scrolls inside its box, so the page never outgrows the window), so that
-// a headless browser's --dump-dom shows them.
+// Run on load, in order: sortable tables, then what a headless browser's --dump-dom shows of the
+// rendered page (the tests read it): each plot's rendered size (data-rendered-size on its
+// figure), and the page's width beside the window's (data-widths on the body: a wide table
+// scrolls inside its box, so the page never outgrows the window).
+//
+// A sortable table's header cells become buttons (so that a page without script shows no
+// control that does nothing), reachable and pressed from the keyboard like any button; the
+// header cell's aria-sort says how the rows are sorted. sortable(table, sortBy) does this and
+// returns sort(col, up), which orders the rows (sortBy) and marks the header; a page's own
+// script (page_end's `script`) uses it for tables with their own order.
 constexpr const char* kScript = R"(
+const sortable = (table, sortBy) => {
+  const heads = Array.from(table.tHead.rows[0].cells);
+  const sort = (col, up) => {
+    sortBy(col, up);
+    heads.forEach((th, k) => {
+      if (k === col) th.dataset.order = up ? 'up' : 'down';
+      else delete th.dataset.order;
+      th.setAttribute('aria-sort', k !== col ? 'none' : up ? 'ascending' : 'descending');
+    });
+  };
+  heads.forEach((th, col) => {
+    const button = document.createElement('button');
+    button.type = 'button';
+    button.className = 'sort';
+    button.append(...th.childNodes);
+    th.append(button);
+    th.setAttribute('aria-sort', 'none');
+    button.addEventListener('click', () => sort(col, th.dataset.order !== 'up'));
+  });
+  return sort;
+};
+for (const table of document.querySelectorAll('table.sortable')) {
+  const body = table.tBodies[0];
+  const key = (td) => td.dataset.value !== undefined ? Number(td.dataset.value) : td.textContent;
+  sortable(table, (col, up) => {
+    const rows = Array.from(body.rows);
+    rows.sort((a, b) => {
+      const x = key(a.cells[col]), y = key(b.cells[col]);
+      return (x < y ? -1 : x > y ? 1 : 0) * (up ? 1 : -1);
+    });
+    rows.forEach((tr) => body.appendChild(tr));
+  });
+}
+)";
+
+// After the page's own script: the measurements (see kScript).
+constexpr const char* kMeasure = R"(
 for (const fig of document.querySelectorAll('figure.plot')) {
   const box = fig.querySelector('svg').getBoundingClientRect();
   fig.dataset.renderedSize = Math.round(box.width) + 'x' + Math.round(box.height);
 }
 document.body.dataset.widths = document.documentElement.scrollWidth + 'x' + window.innerWidth;
-for (const table of document.querySelectorAll('table.sortable')) {
-  table.querySelectorAll('th').forEach((th, col) => {
-    th.addEventListener('click', () => {
-      const body = table.tBodies[0];
-      const up = th.dataset.order !== 'up';
-      th.dataset.order = up ? 'up' : 'down';
-      const key = (tr) => {
-        const td = tr.cells[col];
-        return td.dataset.value !== undefined ? Number(td.dataset.value) : td.textContent;
-      };
-      const rows = Array.from(body.rows);
-      rows.sort((a, b) => (key(a) < key(b) ? -1 : key(a) > key(b) ? 1 : 0) * (up ? 1 : -1));
-      rows.forEach((tr) => body.appendChild(tr));
-    });
-  });
-}
 )";
 
 }  // namespace
@@ -76,8 +107,8 @@ std::string page_start(const std::string& escaped_title) {
          escaped_title + "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n";
 }
 
-std::string page_end() {
-  return std::string("<script>") + kScript + "</script>\n</body>\n</html>\n";
+std::string page_end(const std::string& script) {
+  return std::string("<script>") + kScript + script + kMeasure + "</script>\n</body>\n</html>\n";
 }
 
 std::string num_cell(const std::optional<double>& x) {

@@ -36,12 +36,11 @@ constexpr double kMaxBarReach = 3.0;
 
 // Style and sorting for the runs table. Missing values sort last in both directions, numbers
 // (data-value) before text, ties keep the label order; "#sort=COL" or "#sort=-COL" in the URL
-// sorts by the header whose data-key is COL when the page loads.
+// sorts by the header whose data-key is COL when the page loads. The headers become buttons with
+// aria-sort through sortable() of the page's script (io/html_page.cpp).
 constexpr const char* kStyle = R"(
 .table-scroll { overflow-x: auto; }
-table.runs th { cursor: pointer; white-space: nowrap; }
-table.runs th[data-order="up"]::after { content: " \25B2"; }
-table.runs th[data-order="down"]::after { content: " \25BC"; }
+table.runs th { white-space: nowrap; }
 table.runs tr.failed td { background: #fde8e8; }
 table.runs td.status-failed { color: #a40000; font-weight: bold; }
 )";
@@ -58,16 +57,12 @@ constexpr const char* kSortScript = R"(
     if (typeof a !== typeof b) return typeof a === 'number' ? -1 : 1;
     return (a < b ? -1 : a > b ? 1 : 0) * (up ? 1 : -1);
   };
-  const sortBy = (col, up) => {
-    heads.forEach((th) => delete th.dataset.order);
-    heads[col].dataset.order = up ? 'up' : 'down';
+  const sortBy = sortable(table, (col, up) => {
     const rows = Array.from(body.rows);
     rows.sort((a, b) => compare(key(a.cells[col]), key(b.cells[col]), up) ||
                         Number(a.dataset.index) - Number(b.dataset.index));
     rows.forEach((tr) => body.appendChild(tr));
-  };
-  heads.forEach((th, col) =>
-      th.addEventListener('click', () => sortBy(col, th.dataset.order !== 'up')));
+  });
   // A malformed escape in the fragment (#sort=%E0%A4%A) makes decodeURIComponent throw: the
   // fragment is then read as it is, and the page works without the sort it cannot name.
   let hash = location.hash;
@@ -487,9 +482,8 @@ std::string summary_html(const std::vector<SummaryRow>& rows, const SummaryHtmlO
   line(h, "<nav><a href=\"#runs-heading\">Runs</a><a href=\"#trends\">Trends</a></nav>");
   problems_section(h, rows);
   runs_section(h, rows, o);
-  line(h, std::string("<script>") + kSortScript + "</script>");
   trends_section(h, rows, o.trend_x);
-  return h + html::provenance_section(o.provenance) + html::page_end();
+  return h + html::provenance_section(o.provenance) + html::page_end(kSortScript);
 }
 
 }  // namespace frictionid
