@@ -107,7 +107,7 @@ std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d
     }
     ReportPlot out;
     out.file = "compare_" + name + ".svg";
-    out.heading = name;
+    out.heading = "Every model over the measured data";
     out.caption = fmt::format(
         "Measured {0} (grey dots) and each model's prediction at the same rows, divided by {1} "
         "and by the parity sign (sgn v_x for T_x, sgn omega for T_y and M_z), against eps (rows "
@@ -245,10 +245,12 @@ void closing_sections(std::string& h, const ModelComparison& c,
                         escape(compare_variant_directory(f.model)), escape(f.model)));
   line(h, "</ul>");
 
-  for (const auto& p : plots) {
-    line(h, fmt::format("<h2 id=\"plots-{0}\">{0}</h2>", escape(p.heading)));
-    line(h, plot_figure(p));
-  }
+  if (plots.empty()) return;
+  // Every channel's plot side by side (three columns on a wide screen, one on a narrow one).
+  line(h, "<h2 id=\"plots\">Every model over the measured data</h2>");
+  line(h, "<div class=\"plot-grid\" data-kind=\"compare\">");
+  for (const auto& p : plots) line(h, plot_figure(p));
+  line(h, "</div>");
 }
 
 }  // namespace

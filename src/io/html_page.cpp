@@ -12,9 +12,14 @@
 namespace frictionid::html {
 namespace {
 
+// The pages' style. Plots stand in grids (.plot-grid): one column on a narrow screen, two from
+// 900 px, three from 1200 px, where the page widens and its text stays 1080 px wide. A plot is
+// 440 px wide with 11 px text (io/svg_plot.hpp); below 1200 px it is drawn at least 402 px wide
+// (400 inside its border: 10 px text), its figure scrolling sideways on a narrower screen, as a
+// wide table scrolls in its box; the page itself never outgrows the window.
 constexpr const char* kStyle = R"(
-body { font-family: sans-serif; max-width: 1080px; margin: 1.5em auto; padding: 0 1em;
-       color: #222; line-height: 1.4; }
+body { font-family: sans-serif; font-size: 16px; max-width: 1080px; margin: 1.5em auto;
+       padding: 0 1em; color: #222; line-height: 1.4; overflow-wrap: break-word; }
 h1 { font-size: 1.6em; margin-bottom: 0.2em; }
 h2 { border-bottom: 1px solid #ddd; padding-bottom: 0.15em; margin-top: 1.6em; }
 .summary { color: #444; }
@@ -24,7 +29,7 @@ h2 { border-bottom: 1px solid #ddd; padding-bottom: 0.15em; margin-top: 1.6em; }
 details.warning-cause { margin: 0.4em 0; }
 details.warning-cause summary { cursor: pointer; }
 nav { margin: 0.8em 0; }
-nav a { margin-right: 1em; }
+nav a { margin-right: 1em; display: inline-block; }
 table { border-collapse: collapse; margin: 0.6em 0; display: block; max-width: 100%;
         overflow-x: auto; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; }
@@ -38,16 +43,35 @@ dl.traceability code { overflow-wrap: anywhere; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
 .estimate { white-space: nowrap; }
 table.heat td { text-align: center; min-width: 3.5em; }
-figure.plot { margin: 1em 0; }
-figure.plot svg { max-width: 100%; height: auto; border: 1px solid #eee; }
+.plot-grid { display: grid; grid-template-columns: minmax(0, 1fr); gap: 1em; margin: 1em 0;
+             align-items: start; }
+figure.plot { margin: 1em 0; min-width: 0; overflow-x: auto; }
+.plot-grid > figure.plot { margin: 0; }
+figure.plot svg { display: block; width: 100%; max-width: 660px; height: auto;
+                  border: 1px solid #eee; box-sizing: border-box; }
 figcaption { color: #444; font-size: 0.92em; max-width: 720px; }
 dt { font-weight: bold; margin-top: 0.5em; }
+@media (max-width: 1199px) {
+  figure.plot svg { min-width: 402px; }
+}
+@media (max-width: 600px) {
+  body { margin-top: 0.8em; padding: 0 0.6em; }
+}
+@media (min-width: 900px) {
+  .plot-grid { grid-template-columns: repeat(2, minmax(0, 1fr)); }
+}
+@media (min-width: 1200px) {
+  body { max-width: 1720px; }
+  body > :not(.plot-grid) { max-width: 1080px; }
+  .plot-grid { grid-template-columns: repeat(3, minmax(0, 1fr)); }
+}
 )";
 
 // Run on load, in order: sortable tables, then what a headless browser's --dump-dom shows of the
-// rendered page (the tests read it): each plot's rendered size (data-rendered-size on its
-// figure), and the page's width beside the window's (data-widths on the body: a wide table
-// scrolls inside its box, so the page never outgrows the window).
+// rendered page (the tests read it): each plot's rendered size, its position on the page and the
+// size its smallest text is drawn at (data-rendered-size, data-rendered-at, data-text-px on its
+// figure); the page's width beside the window's (data-widths on the body: wide tables and plots
+// scroll inside their boxes, so the page never outgrows the window) and the body's font size.
 //
 // A sortable table's header cells become buttons (so that a page without script shows no
 // control that does nothing), reachable and pressed from the keyboard like any button; the
@@ -93,10 +117,20 @@ for (const table of document.querySelectorAll('table.sortable')) {
 // After the page's own script: the measurements (see kScript).
 constexpr const char* kMeasure = R"(
 for (const fig of document.querySelectorAll('figure.plot')) {
-  const box = fig.querySelector('svg').getBoundingClientRect();
+  const svg = fig.querySelector('svg');
+  const box = svg.getBoundingClientRect(), at = fig.getBoundingClientRect();
   fig.dataset.renderedSize = Math.round(box.width) + 'x' + Math.round(box.height);
+  fig.dataset.renderedAt = Math.round(at.left + window.scrollX) + ',' +
+                           Math.round(at.top + window.scrollY);
+  let smallest = Infinity;
+  for (const t of svg.querySelectorAll('text'))
+    smallest = Math.min(smallest, parseFloat(getComputedStyle(t).fontSize));
+  const view = svg.viewBox.baseVal;  // drawn into the content box, inside the border
+  if (smallest < Infinity && view && view.width > 0)
+    fig.dataset.textPx = (smallest * (svg.clientWidth || box.width) / view.width).toFixed(1);
 }
 document.body.dataset.widths = document.documentElement.scrollWidth + 'x' + window.innerWidth;
+document.body.dataset.fontPx = parseFloat(getComputedStyle(document.body).fontSize);
 )";
 
 }  // namespace

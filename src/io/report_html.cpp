@@ -153,13 +153,17 @@ void correlation_section(std::string& h, const FitResult& r) {
        "apart; their stderrs are then large together.</p>");
 }
 
+// One section per kind of plot, its channels' plots side by side in a grid (three columns on a
+// wide screen, one on a narrow one).
 void plot_sections(std::string& h, const std::vector<ReportPlot>& plots,
                    const std::vector<std::string>& headings) {
   if (plots.empty()) line(h, "<h2>Plots</h2><p>No channel had predictions to plot.</p>");
   for (const auto& hd : headings) {
     line(h, fmt::format("<h2 id=\"{}\">{}</h2>", anchor(hd), escape(hd)));
+    line(h, fmt::format("<div class=\"plot-grid\" data-kind=\"{}\">", escape(hd)));
     for (const auto& p : plots)
       if (p.heading == hd) line(h, plot_figure(p));
+    line(h, "</div>");
   }
 }
 

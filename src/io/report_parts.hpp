@@ -71,8 +71,10 @@ std::string plotted_rows_note(std::size_t rows);
 
 // One plot of the report: written as `file` next to report.md and inlined in report.html.
 struct ReportPlot {
-  std::string file;     // e.g. "collapse_T_x.svg"
-  std::string heading;  // the section it belongs to, e.g. "T_x" or "T_x against slip_angle"
+  std::string file;  // e.g. "collapse_T_x.svg"
+  // The section it belongs to: its kind ("Collapse plots", "Measured and fitted", ...,
+  // "Against slip_angle" for --plot-x), whose plots, one per channel, stand side by side.
+  std::string heading;
   std::string caption;  // what is drawn and how rows were chosen
   std::string svg;      // an <svg> element (io/svg_plot.hpp), no namespace attribute
 };

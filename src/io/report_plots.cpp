@@ -35,8 +35,14 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // palette (io/palette.hpp) each, and more colours are not told apart.
 constexpr std::size_t kMaxColourGroups = palette::kSeries.size();
 // Per channel: collapse, measured and fitted, residuals against eps and against the fitted
-// value, normal quantiles.
+// value, normal quantiles. Each kind is a section of the page with every channel's plot of
+// that kind side by side (the plot's heading).
 constexpr std::size_t kPlotsPerChannel = 5;
+constexpr const char* kCollapseHeading = "Collapse plots";
+constexpr const char* kFitHeading = "Measured and fitted";
+constexpr const char* kResidualHeading = "Whitened residuals against eps";
+constexpr const char* kResidualFittedHeading = "Whitened residuals against the fitted value";
+constexpr const char* kQuantileHeading = "Normal quantiles of the whitened residuals";
 
 const char* channel_unit(Channel c) {
   return (c == Channel::T_x || c == Channel::T_y) ? "N" : "N m";
@@ -421,7 +427,7 @@ ReportPlot collapse_plot(const FitResult& r, const Dataset& d, Channel c, const 
 
   ReportPlot out;
   out.file = "collapse_" + name + ".svg";
-  out.heading = name;
+  out.heading = kCollapseHeading;
   out.caption = fmt::format(
       "Collapse plot: measured {0} divided by {1} and by its parity sign (coloured dots), "
       "against eps. The parity sign is sgn v_x for T_x, sgn omega for T_y and M_z: the signs the "
@@ -455,7 +461,7 @@ ReportPlot fit_plot(const FitResult& r, const Dataset& d, Channel c, const EpsAx
   const bool lines =
       measured_and_fitted(p, r, d, c, axis, rows, groups, true, [](std::size_t) { return 1.0; });
   p.notes.push_back(groups.rule + (lines ? "; lines: the fitted model" : ""));
-  ReportPlot out{"fit_" + name + ".svg", name, "", svg::render(p)};
+  ReportPlot out{"fit_" + name + ".svg", kFitHeading, "", svg::render(p)};
   out.caption = fmt::format(
       "Measured {0} in {1} against eps (dots, {2}) and the fitted model over them: {3}.", name,
       channel_unit(c), groups.rule,
@@ -561,7 +567,7 @@ ReportPlot residual_plot(const Whitened& w, Channel c, const EpsAxis& axis, cons
   p.x_markers = axis.markers;
   p.y_reference = 0.0;
   residual_dots(p, axis.x, w, rows, groups);
-  ReportPlot out{"residuals_" + name + ".svg", name, "", svg::render(p)};
+  ReportPlot out{"residuals_" + name + ".svg", kResidualHeading, "", svg::render(p)};
   out.caption = residual_caption(name, w) + " Colours: " + groups.rule + ".";
   if (!rows.notes.empty()) out.caption += " (" + join_notes(rows.notes) + ".)";
   return out;
@@ -578,7 +584,7 @@ ReportPlot residual_fitted_plot(const FitResult& r, const Whitened& w, Channel c
   p.y_label = kWhitenedLabel;
   p.y_reference = 0.0;
   residual_dots(p, r.fitted[static_cast<int>(c)], w, rows, groups);
-  ReportPlot out{"residuals_fitted_" + name + ".svg", name, "", svg::render(p)};
+  ReportPlot out{"residuals_fitted_" + name + ".svg", kResidualFittedHeading, "", svg::render(p)};
   out.caption = residual_caption(name, w) +
                 " Against the fitted value, a funnel means the noise model's sigma does not "
                 "follow the data's. Colours: " +
@@ -614,7 +620,7 @@ ReportPlot qq_plot(const Whitened& w, Channel c, const ChannelRows& rows) {
   }
   p.series.push_back(std::move(dots));
   p.series.push_back(std::move(line));
-  ReportPlot out{"qq_" + name + ".svg", name, "", svg::render(p)};
+  ReportPlot out{"qq_" + name + ".svg", kQuantileHeading, "", svg::render(p)};
   out.caption = fmt::format(
       "The whitened residuals of {} ({}) sorted, against the quantiles of the standard normal "
       "at (k − 0.5)/n: on the dashed line y = x when they are normal with standard deviation 1. "
@@ -656,8 +662,8 @@ ReportPlot column_plot(const FitResult& r, const Dataset& d, Channel c, const st
     fitted.y.push_back(r.fitted[ci][i]);
   }
   p.series.push_back(std::move(fitted));
-  ReportPlot out{fmt::format("x_{}_{}.svg", file_part(column), name),
-                 fmt::format("{} against {}", name, column), "", svg::render(p)};
+  ReportPlot out{fmt::format("x_{}_{}.svg", file_part(column), name), "Against " + column, "",
+                 svg::render(p)};
   out.caption = fmt::format(
       "Measured {} (coloured dots, {}) and fitted (small dark dots, drawn over them) against the "
       "column {}.",

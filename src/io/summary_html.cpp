@@ -455,10 +455,13 @@ void trends_section(std::string& h, const std::vector<SummaryRow>& rows, const s
   }
   std::vector<SummaryRow> plotted;
   for (const auto& r : t.runs) plotted.push_back(*r.row);
+  // The parameters' plots side by side (three columns on a wide screen, one on a narrow one).
+  line(h, "<div class=\"plot-grid\" data-kind=\"trends\">");
   for (const auto& param : summary_parameter_names(plotted)) {
     const std::string figure = trend_figure(t, param, x);
     if (!figure.empty()) line(h, figure);
   }
+  line(h, "</div>");
 }
 
 }  // namespace

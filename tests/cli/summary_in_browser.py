@@ -12,7 +12,8 @@ Checks:
   - every label link names a report file that exists;
   - no http(s) URL anywhere in the page or its DOM;
   - the screenshot is not blank;
-  - at a 390 px window the page is no wider than the window (factorial_in_browser.py's check);
+  - at a 390 px window the page is no wider than the window, its text is readable and the trend
+    plots stand in one column; at 1400 px three side by side (factorial_in_browser.py's checks);
   - sorting works: opened as summary.html#sort=-load the rows are in descending load, and as
     #sort=f in ascending f with the failed run (no f) last;
   - the headers are buttons: a click on f's sets its cell's aria-sort to ascending (the rows in
@@ -32,7 +33,8 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_in_browser import CHROMIUM_FLAGS, WINDOW, chromium, png_grey_levels, run  # noqa: E402
-from factorial_in_browser import (click_failures, click_header, narrow_widths,  # noqa: E402
+from factorial_in_browser import (click_failures, click_header, in_frame,  # noqa: E402
+                                  layout_failures, narrow_widths, readable_failures,
                                   width_failures)
 
 LOADS = (1000, 2000, 3000)
@@ -191,8 +193,12 @@ def main():
                 if scheme in text:
                     failures.append("the %s holds a %s URL" % (where, scheme))
 
-        # At a 390 px window the page is no wider than the window (the table scrolls in its box).
-        failures += width_failures("summary.html", narrow_widths(browser, tmp, page))
+        # At a 390 px window the page is no wider than the window (the table scrolls in its box),
+        # its text is readable and the plots stand in one column; at 1400 px, three in a row.
+        narrow = narrow_widths(browser, tmp, page)
+        failures += width_failures("summary.html", narrow)
+        failures += readable_failures("summary.html", narrow)
+        failures += layout_failures("summary.html", in_frame(browser, tmp, page, 1400), narrow)
 
         if not os.path.exists(shot):
             failures.append("no screenshot")
