@@ -16,7 +16,8 @@ namespace {
 // 900 px, three from 1200 px, where the page widens and its text stays 1080 px wide. A plot is
 // 440 px wide with 11 px text (io/svg_plot.hpp); below 1200 px it is drawn at least 402 px wide
 // (400 inside its border: 10 px text), its figure scrolling sideways on a narrower screen, as a
-// wide table scrolls in its box; the page itself never outgrows the window.
+// wide table scrolls in its box; the page itself never outgrows the window. In print nothing
+// scrolls, headings stay with what follows and tables and figures are kept whole.
 constexpr const char* kStyle = R"(
 body { font-family: sans-serif; font-size: 16px; max-width: 1080px; margin: 1.5em auto;
        padding: 0 1em; color: #222; line-height: 1.4; overflow-wrap: break-word; }
@@ -64,6 +65,19 @@ dt { font-weight: bold; margin-top: 0.5em; }
   body { max-width: 1720px; }
   body > :not(.plot-grid) { max-width: 1080px; }
   .plot-grid { grid-template-columns: repeat(3, minmax(0, 1fr)); }
+}
+@media print {
+  body { max-width: none; margin: 0; padding: 0; font-size: 11pt; }
+  body > :not(.plot-grid) { max-width: none; }
+  nav { display: none; }
+  h1, h2, h3, caption, summary, dt { break-after: avoid; page-break-after: avoid; }
+  table, figure, figure.plot, tr, .warnings, .ok, details, dl.traceability dd {
+    break-inside: avoid; page-break-inside: avoid; }
+  table { display: table; overflow: visible; font-size: 9pt; }
+  figure.plot { overflow: visible; }
+  figure.plot svg { min-width: 0; max-width: 100%; }
+  .plot-grid { grid-template-columns: repeat(2, minmax(0, 1fr)); }
+  th, td, thead { position: static; }
 }
 )";
 

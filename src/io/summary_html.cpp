@@ -43,6 +43,9 @@ constexpr const char* kStyle = R"(
 table.runs th { white-space: nowrap; }
 table.runs tr.failed td { background: #fde8e8; }
 table.runs td.status-failed { color: #a40000; font-weight: bold; }
+@media print {
+  .table-scroll { overflow: visible; }
+}
 )";
 constexpr const char* kSortScript = R"(
 (() => {
