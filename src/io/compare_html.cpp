@@ -150,8 +150,8 @@ void quality_section(std::string& h, const ModelComparison& c) {
       "<table class=\"sortable\"><thead><tr><th>model</th><th>AIC</th><th>ΔAIC</th><th>BIC</th>"
       "<th>ΔBIC</th><th>χ², one noise</th>";
   for (const auto& cs : first.channel_summaries)
-    head +=
-        fmt::format("<th>RMSE {0}</th><th>residual lag-1 corr. {0}</th>", channel_name(cs.channel));
+    head += fmt::format("<th>RMSE {0} [{1}]</th><th>residual lag-1 corr. {0}</th>",
+                        channel_name(cs.channel), channel_unit(cs.channel));
   line(h, head + "</tr></thead><tbody>");
   for (std::size_t k = 0; k < c.fits.size(); ++k) {
     const FitResult& f = c.fits[k];

@@ -186,13 +186,17 @@ void statistics_section(std::string& h, const FitResult& r) {
   line(h, "</tbody></table>");
   if (r.channel_summaries.empty()) return;
   line(h,
-       "<table class=\"sortable\"><thead><tr><th>channel</th><th>rows</th><th>RMSE</th>"
-       "<th>R²</th><th>scale σ</th><th>scale source</th></tr></thead><tbody>");
+       "<table class=\"sortable\"><thead><tr><th>channel</th><th>unit</th><th>rows</th>"
+       "<th>RMSE</th><th>R²</th><th>scale σ</th><th>scale source</th></tr></thead><tbody>");
   for (const auto& s : r.channel_summaries)
-    line(h, fmt::format("<tr><td>{}</td>{}{}{}{}<td>{}</td></tr>", channel_name(s.channel),
-                        num_cell(static_cast<double>(s.rows)), num_cell(s.rmse), num_cell(s.r2),
-                        num_cell(s.scale), escape(s.scale_source)));
+    line(h,
+         fmt::format("<tr><td>{}</td><td>{}</td>{}{}{}{}<td>{}</td></tr>", channel_name(s.channel),
+                     channel_unit(s.channel), num_cell(static_cast<double>(s.rows)),
+                     num_cell(s.rmse), num_cell(s.r2), num_cell(s.scale), escape(s.scale_source)));
   line(h, "</tbody></table>");
+  line(h,
+       "<p>RMSE and the scale σ are in the channel's unit. N is the normal load; the newton is "
+       "written out.</p>");
 }
 
 void solver_section(std::string& h, const FitResult& r) {

@@ -120,11 +120,16 @@ std::string report_markdown(const FitResult& r, const std::vector<std::string>& 
                                               : "from absolute σ (not rescaled)"));
   line("");
   if (!r.channel_summaries.empty()) {
-    line("| channel | rows | RMSE | R² | scale σ | scale source |");
-    line("|---|---|---|---|---|---|");
+    line("| channel | unit | rows | RMSE | R² | scale σ | scale source |");
+    line("|---|---|---|---|---|---|---|");
     for (const auto& s : r.channel_summaries)
-      line(fmt::format("| {} | {} | {} | {} | {} | {} |", channel_name(s.channel), s.rows,
-                       num(s.rmse), num(s.r2), num(s.scale), cell(s.scale_source)));
+      line(fmt::format("| {} | {} | {} | {} | {} | {} | {} |", channel_name(s.channel),
+                       channel_unit(s.channel), s.rows, num(s.rmse), num(s.r2), num(s.scale),
+                       cell(s.scale_source)));
+    line("");
+    line(
+        "RMSE and the scale σ are in the channel's unit. N is the normal load; the newton is "
+        "written out.");
     line("");
   }
 

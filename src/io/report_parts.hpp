@@ -32,6 +32,12 @@ std::string num(const std::optional<double>& x);
 // determined)". Plain text; the caller escapes it.
 std::vector<std::string> result_items(const FitResult& r);
 
+// The unit of channel c in labels and table headers: "newton" for the forces T_x, T_y, "newton
+// metre" for the moments. Spelled out, never "N": on these pages N is the normal load (the
+// model's symbol and the data's column), so "N [N]" would name the load in itself. Labels read
+// "T_x [newton]", "N [newton]" (docs/design.md §4.3, "Units").
+const char* channel_unit(Channel c);
+
 // The channel names joined by ", "; "none" for no channel.
 std::string join_channels(const std::vector<Channel>& cs);
 

@@ -44,9 +44,6 @@ constexpr const char* kResidualHeading = "Whitened residuals against eps";
 constexpr const char* kResidualFittedHeading = "Whitened residuals against the fitted value";
 constexpr const char* kQuantileHeading = "Normal quantiles of the whitened residuals";
 
-const char* channel_unit(Channel c) {
-  return (c == Channel::T_x || c == Channel::T_y) ? "N" : "N m";
-}
 const char* collapse_divisor(Channel c) {
   return (c == Channel::T_x || c == Channel::T_y) ? "N" : "(N R)";
 }
@@ -463,7 +460,7 @@ ReportPlot fit_plot(const FitResult& r, const Dataset& d, Channel c, const EpsAx
   p.notes.push_back(groups.rule + (lines ? "; lines: the fitted model" : ""));
   ReportPlot out{"fit_" + name + ".svg", kFitHeading, "", svg::render(p)};
   out.caption = fmt::format(
-      "Measured {0} in {1} against eps (dots, {2}) and the fitted model over them: {3}.", name,
+      "Measured {0}, in {1}, against eps (dots, {2}) and the fitted model over them: {3}.", name,
       channel_unit(c), groups.rule,
       lines ? "one line per colour, slip direction, spin sign, tilt sign, load and radius, "
               "sorted by eps"

@@ -80,6 +80,15 @@ constexpr const char* kSortScript = R"(
 })();
 )";
 
+// A covariate's name with its unit, for a header or an axis: the covariates every run has
+// (io/summary_table.hpp) have known units, a manifest's or group's column has none we know. The
+// newton is written out: N is the load (docs/design.md §4.3, "Units").
+std::string covariate_label(const std::string& name) {
+  if (name == "mean_N") return name + " [newton]";
+  if (name == "mean_speed" || name == "mean_omega_R") return name + " [m/s]";
+  return name;
+}
+
 void line(std::string& h, const std::string& s) {
   (h += s) += '\n';
 }
@@ -159,7 +168,8 @@ void runs_section(std::string& h, const std::vector<SummaryRow>& rows,
   head +=
       "<th data-key=\"reduced_chi2\">reduced χ²</th><th data-key=\"warnings\">warnings</th>"
       "<th data-key=\"error\">error</th>";
-  for (const auto& c : covariates) head += fmt::format("<th data-key=\"{0}\">{0}</th>", escape(c));
+  for (const auto& c : covariates)
+    head += fmt::format("<th data-key=\"{}\">{}</th>", escape(c), escape(covariate_label(c)));
   line(h, head + "</tr></thead><tbody>");
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const SummaryRow& row = rows[i];
@@ -417,7 +427,7 @@ std::string trend_figure(const Trends& t, const std::string& param, const std::s
   }
   svg::Plot plot;
   plot.title = param + " against " + x;
-  plot.x_label = x;
+  plot.x_label = covariate_label(x);
   plot.y_label = param;
   if (clipped > 0)
     plot.notes.push_back(fmt::format("error bars of {} run{} cut (no cap at the cut end)", clipped,

@@ -3,7 +3,8 @@
 // shared.html and the runs' reports) and a shimmy sweep.
 //   - every <svg> (inline or a standalone file) is an image to assistive technology: role="img",
 //     a <title> as its first child and an aria-label that says what is plotted;
-//   - every series is drawn in a colour of the palette (io/palette.hpp).
+//   - every series is drawn in a colour of the palette (io/palette.hpp);
+//   - no label writes the newton as "N", the symbol of the normal load (docs/design.md §4.3).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -156,6 +157,31 @@ TEST_F(ReportPages, EverySeriesIsDrawnInAPaletteColour) {
       }
   // Several series colours were seen: groups, models, runs.
   EXPECT_GE(series_colours.size(), 4u);
+}
+
+// N is the normal load; a label that means newtons writes "newton". The old labels, "T_x [N]",
+// "fitted M_z [N m]", "Measured T_x in N against eps", all match the pattern.
+TEST_F(ReportPages, NoLabelWritesTheNewtonAsN) {
+  static const std::regex newton_as_n(
+      "[\\[(]\\s*k?N(\\s*(·|\\.|\\*)?\\s*m)?\\s*[\\])]|\\bin k?N( m)?\\b(?! R)");
+  for (const char* old : {"T_x [N]", "fitted M_z [N m]", "Measured T_x in N against eps",
+                          "load N (N)", "RMSE T_y [kN]"})
+    EXPECT_TRUE(std::regex_search(std::string(old), newton_as_n)) << old;
+  for (const auto& [path, text] : files({".svg", ".html", ".md"})) {
+    std::smatch m;
+    if (std::regex_search(text, m, newton_as_n))
+      ADD_FAILURE() << path << ": \"" << m.str() << "\" in "
+                    << text.substr(static_cast<std::size_t>(std::max<long>(0, m.position() - 60)),
+                                   160);
+  }
+  // The unit is there, written out.
+  const auto pages = files({".svg", ".html", ".md"});
+  EXPECT_NE(pages.at("fit/fit_T_x.svg").find("T_x [newton]"), std::string::npos);
+  EXPECT_NE(pages.at("fit/fit_M_z.svg").find("M_z [newton metre]"), std::string::npos);
+  EXPECT_NE(pages.at("fit/report.html").find("<td>newton metre</td>"), std::string::npos);
+  EXPECT_NE(pages.at("fit/report.md").find("| M_z | newton metre |"), std::string::npos);
+  EXPECT_NE(pages.at("compare/compare.html").find("RMSE T_x [newton]"), std::string::npos);
+  EXPECT_NE(pages.at("batch/summary.html").find("mean_N [newton]"), std::string::npos);
 }
 
 }  // namespace
