@@ -42,7 +42,7 @@ th[aria-sort="ascending"] > button.sort::after { content: " \25B2"; }
 th[aria-sort="descending"] > button.sort::after { content: " \25BC"; }
 dl.traceability code { overflow-wrap: anywhere; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
-.estimate { white-space: nowrap; }
+.estimate, td.interval-method { white-space: nowrap; }
 table.heat td { text-align: center; min-width: 3.5em; }
 .plot-grid { display: grid; grid-template-columns: minmax(0, 1fr); gap: 1em; margin: 1em 0;
              align-items: start; }

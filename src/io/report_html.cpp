@@ -87,7 +87,7 @@ void parameter_section(std::string& h, const FitResult& r) {
   line(h,
        "<table class=\"sortable\" id=\"parameter-table\"><thead><tr><th>name</th><th>value</th>"
        "<th>stderr</th><th>95% interval low</th><th>95% interval high</th>"
-       "<th>sandwich stderr</th>" +
+       "<th>interval method</th><th>sandwich stderr</th>" +
            std::string(r.bootstrap_replicates > 0 ? "<th>bootstrap stderr</th><th>bootstrap "
                                                     "low</th><th>bootstrap high</th>"
                                                   : "") +
@@ -99,6 +99,7 @@ void parameter_section(std::string& h, const FitResult& r) {
     const EstimateText e = estimate_text(p.value, p.std_error);
     row += text_cell(p.value, e.value_alone()) + text_cell(p.std_error, e.error_alone());
     row += interval_cells(chosen_interval(r, p));
+    row += "<td class=\"interval-method\">" + escape(interval_method(r, p)) + "</td>";
     row += stderr_cell(p.std_error_sandwich);
     if (r.bootstrap_replicates > 0)
       row += stderr_cell(p.std_error_bootstrap) + interval_cells(p.ci95_bootstrap);
@@ -111,8 +112,10 @@ void parameter_section(std::string& h, const FitResult& r) {
   }
   line(h, "</tbody></table>");
   line(h,
-       std::string("<p>Click a column header to sort. The interval is ") + interval_caption(r) +
-           "; the sandwich stderr assumes nothing about the noise." +
+       std::string("<p>Click a column header to sort. The 95 % interval is ") +
+           interval_caption(r) +
+           "; the column interval method names each row's. The sandwich stderr assumes nothing "
+           "about the noise." +
            (r.bootstrap_replicates > 0 ? " Bootstrap: " + std::to_string(r.bootstrap_replicates) +
                                              " wild (Rademacher) refits, percentile interval."
                                        : std::string()) +

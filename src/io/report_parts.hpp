@@ -14,10 +14,16 @@
 
 namespace frictionid {
 
-// The 95 % interval of p that r's interval method puts first (ci95 for "model", else the
-// sandwich or profile interval), and the words for its caption.
+// The 95 % interval of p that the reports show in p's row: the one r's interval method puts
+// first (ci95 for "model", else the sandwich or profile interval), except that under "model" a
+// parameter that has a profile interval (computed because it is nearly collinear with another
+// one, |correlation| > 0.99) shows that. interval_method names the row's method for the
+// parameter tables: "model (t·stderr)", "profile" (with "open below/above/on both sides (ends at
+// the bound)" where a side did not close), "HC3 (t·sandwich stderr)", or "—" without an
+// interval. interval_caption: the words for the tables' caption.
 const std::optional<std::array<double, 2>>& chosen_interval(const FitResult& r,
                                                             const ParameterEstimate& p);
+std::string interval_method(const FitResult& r, const ParameterEstimate& p);
 const char* interval_caption(const FitResult& r);
 
 // %.6g-style with the exponent as "× 10ⁿ" (plain_number in io/estimate_text.hpp); never prints

@@ -692,16 +692,34 @@ std::string plotted_rows_note(std::size_t rows) {
 const std::optional<std::array<double, 2>>& chosen_interval(const FitResult& r,
                                                             const ParameterEstimate& p) {
   if (r.intervals == IntervalMethod::Sandwich) return p.ci95_sandwich;
-  if (r.intervals == IntervalMethod::Profile) return p.ci95_profile;
+  // Under the default method a parameter has a profile interval only when it is nearly
+  // collinear with another one, where the symmetric interval can miss on one side.
+  if (r.intervals == IntervalMethod::Profile || p.ci95_profile) return p.ci95_profile;
   return p.ci95;
+}
+
+std::string interval_method(const FitResult& r, const ParameterEstimate& p) {
+  if (!chosen_interval(r, p)) return "—";
+  if (r.intervals == IntervalMethod::Sandwich) return "HC3 (t·sandwich stderr)";
+  if (r.intervals == IntervalMethod::Model && !p.ci95_profile) return "model (t·stderr)";
+  if (!p.profile_closed[0] || !p.profile_closed[1])
+    return std::string("profile, open ") +
+           (p.profile_closed[0]   ? "above"
+            : p.profile_closed[1] ? "below"
+                                  : "on both sides") +
+           " (ends at the bound)";
+  return "profile";
 }
 
 const char* interval_caption(const FitResult& r) {
   if (r.intervals == IntervalMethod::Sandwich)
-    return "value ± t(0.975, dof) × the HC3 sandwich stderr";
+    return "value ± t(0.975, dof) × the HC3 sandwich stderr (HC3)";
   if (r.intervals == IntervalMethod::Profile)
-    return "where the profile of the cost rises by t(0.975, dof)² (docs/physics.md §8.12)";
-  return "value ± t(0.975, dof) × stderr";
+    return "where the profile of the cost rises by t(0.975, dof)² (profile, docs/physics.md "
+           "§8.12)";
+  return "value ± t(0.975, dof) × stderr (model), except for parameters with |correlation| > "
+         "0.99 to another one: their symmetric interval can miss on one side, and theirs is "
+         "where the profile of the cost rises by t(0.975, dof)² (profile, docs/physics.md §8.12)";
 }
 
 const ChannelSummary* find_summary(const FitResult& r, Channel c) {

@@ -4,7 +4,9 @@
 //   - every <svg> (inline or a standalone file) is an image to assistive technology: role="img",
 //     a <title> as its first child and an aria-label that says what is plotted;
 //   - every series is drawn in a colour of the palette (io/palette.hpp);
-//   - no label writes the newton as "N", the symbol of the normal load (docs/design.md §4.3).
+//   - no label writes the newton as "N", the symbol of the normal load (docs/design.md §4.3);
+//   - report.html and report.md name the interval method of each parameter's row, on a fit
+//     where some rows use the profile interval and others the model's.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +17,8 @@
 #include <set>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "io/palette.hpp"
 #include "support/run_command.hpp"
@@ -43,7 +47,13 @@ class ReportPages : public ::testing::Test {
         "generate --model seed --rows 200 --noise 0.01 --loads 4000 --seed 3 --output " +
             (d / "b.csv"),
         "batch " + (d / "a.csv") + " " + (d / "b.csv") +
-            " --no-global --shared kappa --per-run-reports full --report " + (d / "batch")};
+            " --no-global --shared kappa --per-run-reports full --report " + (d / "batch"),
+        // epsilon only in 1.5 to 100: kappa, b and m nearly collinear (|r| > 0.99), so their
+        // rows get the profile interval by default and the others the model's.
+        "generate --model seed --param f=0.9,kappa=1.15,h=0.08 --rows 600 --noise 0.01 "
+        "--eps-min 1.5 --output " +
+            (d / "collinear.csv"),
+        "fit " + (d / "collinear.csv") + " --model seed --report " + (d / "collinear")};
     for (const auto& c : commands) {
       const auto r = run_frictionid(c);
       setup_ok_ = setup_ok_ && r.code == 0;
@@ -182,6 +192,65 @@ TEST_F(ReportPages, NoLabelWritesTheNewtonAsN) {
   EXPECT_NE(pages.at("fit/report.md").find("| M_z | newton metre |"), std::string::npos);
   EXPECT_NE(pages.at("compare/compare.html").find("RMSE T_x [newton]"), std::string::npos);
   EXPECT_NE(pages.at("batch/summary.html").find("mean_N [newton]"), std::string::npos);
+}
+
+// The cells of the row <tr data-param="name"> of report.html: each cell's data-value (empty
+// without one) and text.
+std::vector<std::pair<std::string, std::string>> html_row(const std::string& page,
+                                                          const std::string& name) {
+  std::vector<std::pair<std::string, std::string>> cells;
+  const auto row = page.find("<tr data-param=\"" + name + "\">");
+  if (row == std::string::npos) return cells;
+  const std::string tr = page.substr(row, page.find("</tr>", row) - row);
+  for (auto at = tr.find("<td"); at != std::string::npos; at = tr.find("<td", at + 1)) {
+    const auto a = attributes(tr.substr(at));
+    const auto begin = tr.find('>', at) + 1;
+    cells.emplace_back(a.count("data-value") ? a.at("data-value") : "",
+                       tr.substr(begin, tr.find("</td>", begin) - begin));
+  }
+  return cells;
+}
+
+TEST_F(ReportPages, EachParameterRowNamesItsIntervalMethod) {
+  const auto report = nlohmann::json::parse(read_file(dir_->path() / "collinear/report.json"));
+  const std::string html = read_file(dir_->path() / "collinear/report.html");
+  const std::string md = read_file(dir_->path() / "collinear/report.md");
+  ASSERT_EQ(report.at("interval_method"), "model");
+  std::set<std::string> methods;
+  for (const auto& [name, p] : report.at("parameters").items()) {
+    const bool profiled = p.contains("ci95_profile");
+    std::string method = "—";
+    nlohmann::json interval = nullptr;
+    if (profiled) {
+      const auto closed = p.at("profile_closed");
+      method = closed[0] && closed[1] ? "profile"
+               : closed[0]            ? "profile, open above (ends at the bound)"
+               : closed[1]            ? "profile, open below (ends at the bound)"
+                                      : "profile, open on both sides (ends at the bound)";
+      interval = p.at("ci95_profile");
+    } else if (!p.at("ci95").is_null()) {
+      method = "model (t·stderr)";
+      interval = p.at("ci95");
+    }
+    methods.insert(method.rfind("profile", 0) == 0 ? "profile"
+                                                   : method.substr(0, method.find(' ')));
+    // report.html: name, value, stderr, low, high, interval method, ...
+    const auto cells = html_row(html, name);
+    ASSERT_GT(cells.size(), 5u) << name;
+    EXPECT_EQ(cells[5].second, method) << name;
+    if (!interval.is_null()) {
+      EXPECT_EQ(std::stod(cells[3].first), interval[0].get<double>()) << name;
+      EXPECT_EQ(std::stod(cells[4].first), interval[1].get<double>()) << name;
+    }
+    // report.md: the row's last cell.
+    const auto at = md.find("| " + name + " |");
+    ASSERT_NE(at, std::string::npos) << name;
+    const std::string line = md.substr(at, md.find('\n', at) - at);
+    EXPECT_EQ(line.substr(line.rfind("| ", line.size() - 3)), "| " + method + " |") << line;
+  }
+  // The fit is the one asked for: some rows profiled, some not.
+  EXPECT_TRUE(methods.count("profile")) << html;
+  EXPECT_TRUE(methods.count("model")) << html;
 }
 
 }  // namespace
