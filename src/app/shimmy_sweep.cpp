@@ -219,7 +219,10 @@ std::string sweep_html(const SweepResult& s, const std::string& title) {
   for (const auto& o : s.onsets)
     plot.x_markers.push_back({o.speed, "onset " + svg::tick_label(o.speed)});
   std::string page = html::page_start(svg::escape(title));
-  page += "<h1>" + svg::escape(title) + "</h1>\n" + svg::render(plot) + "\n";
+  // In a plot figure, as on the reports: at least 402 px wide on a narrow screen (10 px text),
+  // scrolling in its box rather than widening the page.
+  page += "<h1>" + svg::escape(title) + "</h1>\n<figure class=\"plot\">\n" + svg::render(plot) +
+          "\n</figure>\n";
   page += "<h2>Onset speeds</h2>\n<table><tr>";
   if (!s.param_name.empty()) page += "<th>" + svg::escape(s.param_name) + "</th>";
   page += "<th>V [m/s]</th><th>bracket</th><th>shimmy</th></tr>\n";
