@@ -10,6 +10,7 @@
 #include "app/shimmy.hpp"
 #include "io/html_page.hpp"
 #include "io/json_number.hpp"
+#include "io/palette.hpp"
 #include "io/svg_plot.hpp"
 
 namespace frictionid::app {
@@ -171,8 +172,6 @@ std::string sweep_csv(const SweepResult& s) {
 }
 
 std::string sweep_html(const SweepResult& s, const std::string& title) {
-  static const char* const kColors[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd",
-                                        "#8c564b", "#e377c2", "#7f7f7f", "#17becf"};
   svg::Plot plot;
   plot.title = "Shimmy amplitude of psi against speed";
   plot.notes.push_back(
@@ -187,12 +186,12 @@ std::string sweep_html(const SweepResult& s, const std::string& title) {
     if (values.empty() || values.back() != p.param) values.push_back(p.param);
   for (std::size_t k = 0; k < values.size(); ++k) {
     svg::Series line, stable;
-    const std::string color = kColors[k % 8];
+    const std::string color = palette::series(k);
     line.label =
         s.param_name.empty() ? "shimmy" : s.param_name + " = " + svg::tick_label(values[k]);
     line.color = color;
     line.mark = svg::Mark::Line;
-    stable.color = "#999999";
+    stable.color = palette::kBackdrop;
     stable.label = k == 0 ? "stable" : "";
     for (const auto& p : s.points) {
       if (p.param != values[k]) continue;
@@ -220,7 +219,10 @@ std::string sweep_html(const SweepResult& s, const std::string& title) {
   for (const auto& o : s.onsets)
     plot.x_markers.push_back({o.speed, "onset " + svg::tick_label(o.speed)});
   std::string page = html::page_start(svg::escape(title));
-  page += "<h1>" + svg::escape(title) + "</h1>\n" + svg::render(plot) + "\n";
+  // In a plot figure, as on the reports: at least 402 px wide on a narrow screen (10 px text),
+  // scrolling in its box rather than widening the page.
+  page += "<h1>" + svg::escape(title) + "</h1>\n<figure class=\"plot\">\n" + svg::render(plot) +
+          "\n</figure>\n";
   page += "<h2>Onset speeds</h2>\n<table><tr>";
   if (!s.param_name.empty()) page += "<th>" + svg::escape(s.param_name) + "</th>";
   page += "<th>V [m/s]</th><th>bracket</th><th>shimmy</th></tr>\n";

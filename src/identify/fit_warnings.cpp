@@ -191,7 +191,11 @@ void warn_undetermined_and_correlated(const LocalProblem& lp, const std::vector<
                       number_text((*e->ci95_profile)[0]) + ", " +
                       number_text((*e->ci95_profile)[1]) + "]";
         }
-        if (!profiles.empty())
+        if (!profiles.empty() && res.intervals == IntervalMethod::Model)
+          w += ". Their symmetric intervals may miss on one side, so the reports show their "
+               "profile intervals (ci95_profile): " +
+               profiles + "; use --intervals profile to have every parameter's";
+        else if (!profiles.empty())
           w += ". Their symmetric " + res.interval_method +
                " intervals may miss on one side; the profile intervals (ci95_profile) are " +
                profiles + ": use --intervals profile to report them first";

@@ -12,6 +12,7 @@
 #include <frictionid/io/compare_report.hpp>
 #include "io/estimate_text.hpp"
 #include "io/html_page.hpp"
+#include "io/palette.hpp"
 #include "io/report_parts.hpp"
 #include "io/svg_plot.hpp"
 
@@ -21,7 +22,6 @@ namespace {
 using html::num_cell;
 using svg::escape;
 
-constexpr const char* kModelColours[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e"};
 constexpr const char* kModelDashes[] = {"", "7 4", "2 3", "9 3 2 3", "4 4"};
 // More curves (slip direction, spin sign, tilt sign) than this: models as dots, not lines.
 constexpr std::size_t kMaxCompareCurves = 24;
@@ -52,7 +52,7 @@ std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d
     p.log_x = true;
     p.y_reference = 0.0;
     if (step > 1) p.notes.push_back(plotted_rows_note(n));
-    svg::Series measured("measured", "#999999", svg::Mark::Dots);
+    svg::Series measured("measured", palette::kBackdrop, svg::Mark::Dots);
     measured.tag = "measured";
     // The plotted rows of each curve (slip_curve), sorted by eps: a model's collapsed
     // predictions along one curve are a line.
@@ -77,7 +77,7 @@ std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d
     for (std::size_t k = 0; k < c.fits.size(); ++k) {
       const auto& fitted = c.fits[k].fitted[ci];
       if (fitted.size() != n) continue;
-      const char* colour = kModelColours[k % 5];
+      const char* colour = palette::series(k);
       if (!lines) {
         svg::Series dots(c.fits[k].model, colour, svg::Mark::Dots);
         dots.tag = c.fits[k].model;
@@ -107,7 +107,7 @@ std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d
     }
     ReportPlot out;
     out.file = "compare_" + name + ".svg";
-    out.heading = name;
+    out.heading = "Every model over the measured data";
     out.caption = fmt::format(
         "Measured {0} (grey dots) and each model's prediction at the same rows, divided by {1} "
         "and by the parity sign (sgn v_x for T_x, sgn omega for T_y and M_z), against eps (rows "
@@ -150,8 +150,8 @@ void quality_section(std::string& h, const ModelComparison& c) {
       "<table class=\"sortable\"><thead><tr><th>model</th><th>AIC</th><th>ΔAIC</th><th>BIC</th>"
       "<th>ΔBIC</th><th>χ², one noise</th>";
   for (const auto& cs : first.channel_summaries)
-    head +=
-        fmt::format("<th>RMSE {0}</th><th>residual lag-1 corr. {0}</th>", channel_name(cs.channel));
+    head += fmt::format("<th>RMSE {0} [{1}]</th><th>residual lag-1 corr. {0}</th>",
+                        channel_name(cs.channel), channel_unit(cs.channel));
   line(h, head + "</tr></thead><tbody>");
   for (std::size_t k = 0; k < c.fits.size(); ++k) {
     const FitResult& f = c.fits[k];
@@ -245,10 +245,12 @@ void closing_sections(std::string& h, const ModelComparison& c,
                         escape(compare_variant_directory(f.model)), escape(f.model)));
   line(h, "</ul>");
 
-  for (const auto& p : plots) {
-    line(h, fmt::format("<h2 id=\"plots-{0}\">{0}</h2>", escape(p.heading)));
-    line(h, plot_figure(p));
-  }
+  if (plots.empty()) return;
+  // Every channel's plot side by side (three columns on a wide screen, one on a narrow one).
+  line(h, "<h2 id=\"plots\">Every model over the measured data</h2>");
+  line(h, "<div class=\"plot-grid\" data-kind=\"compare\">");
+  for (const auto& p : plots) line(h, plot_figure(p));
+  line(h, "</div>");
 }
 
 }  // namespace

@@ -202,8 +202,8 @@ std::string compare_markdown(const ModelComparison& compared, const std::vector<
       c.preferred_by_aic, c.preferred_by_bic);
   md += "## Fit quality\n\n| model | AIC | ΔAIC | BIC | ΔBIC | χ², one noise |";
   for (const auto& cs : first.channel_summaries)
-    md += fmt::format(" RMSE {} | residual lag-1 corr. {} |", channel_name(cs.channel),
-                      channel_name(cs.channel));
+    md += fmt::format(" RMSE {0} [{1}] | residual lag-1 corr. {0} |", channel_name(cs.channel),
+                      channel_unit(cs.channel));
   md += "\n|---|---|---|---|---|---|";
   for (std::size_t i = 0; i < first.channel_summaries.size(); ++i) md += "---|---|";
   md += "\n";

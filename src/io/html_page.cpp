@@ -12,9 +12,15 @@
 namespace frictionid::html {
 namespace {
 
+// The pages' style. Plots stand in grids (.plot-grid): one column on a narrow screen, two from
+// 900 px, three from 1200 px, where the page widens and its text stays 1080 px wide. A plot is
+// 440 px wide with 11 px text (io/svg_plot.hpp); below 1200 px it is drawn at least 402 px wide
+// (400 inside its border: 10 px text), its figure scrolling sideways on a narrower screen, as a
+// wide table scrolls in its box; the page itself never outgrows the window. In print nothing
+// scrolls, headings stay with what follows and tables and figures are kept whole.
 constexpr const char* kStyle = R"(
-body { font-family: sans-serif; max-width: 1080px; margin: 1.5em auto; padding: 0 1em;
-       color: #222; line-height: 1.4; }
+body { font-family: sans-serif; font-size: 16px; max-width: 1080px; margin: 1.5em auto;
+       padding: 0 1em; color: #222; line-height: 1.4; overflow-wrap: break-word; }
 h1 { font-size: 1.6em; margin-bottom: 0.2em; }
 h2 { border-bottom: 1px solid #ddd; padding-bottom: 0.15em; margin-top: 1.6em; }
 .summary { color: #444; }
@@ -24,48 +30,121 @@ h2 { border-bottom: 1px solid #ddd; padding-bottom: 0.15em; margin-top: 1.6em; }
 details.warning-cause { margin: 0.4em 0; }
 details.warning-cause summary { cursor: pointer; }
 nav { margin: 0.8em 0; }
-nav a { margin-right: 1em; }
+nav a { margin-right: 1em; display: inline-block; }
 table { border-collapse: collapse; margin: 0.6em 0; display: block; max-width: 100%;
         overflow-x: auto; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: left; }
 th { background: #f3f3f3; }
-table.sortable th { cursor: pointer; }
+th > button.sort { font: inherit; font-weight: bold; color: inherit; background: none; border: 0;
+                   padding: 0; margin: 0; cursor: pointer; text-align: inherit; }
+th > button.sort:focus-visible { outline: 2px solid #0072b2; outline-offset: 2px; }
+th[aria-sort="ascending"] > button.sort::after { content: " \25B2"; }
+th[aria-sort="descending"] > button.sort::after { content: " \25BC"; }
 dl.traceability code { overflow-wrap: anywhere; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
-.estimate { white-space: nowrap; }
+.estimate, td.interval-method { white-space: nowrap; }
 table.heat td { text-align: center; min-width: 3.5em; }
-figure.plot { margin: 1em 0; }
-figure.plot svg { max-width: 100%; height: auto; border: 1px solid #eee; }
+.plot-grid { display: grid; grid-template-columns: minmax(0, 1fr); gap: 1em; margin: 1em 0;
+             align-items: start; }
+figure.plot { margin: 1em 0; min-width: 0; overflow-x: auto; }
+.plot-grid > figure.plot { margin: 0; }
+figure.plot svg { display: block; width: 100%; max-width: 660px; height: auto;
+                  border: 1px solid #eee; box-sizing: border-box; }
 figcaption { color: #444; font-size: 0.92em; max-width: 720px; }
 dt { font-weight: bold; margin-top: 0.5em; }
+@media (max-width: 1199px) {
+  figure.plot svg { min-width: 402px; }
+}
+@media (max-width: 600px) {
+  body { margin-top: 0.8em; padding: 0 0.6em; }
+}
+@media (min-width: 900px) {
+  .plot-grid { grid-template-columns: repeat(2, minmax(0, 1fr)); }
+}
+@media (min-width: 1200px) {
+  body { max-width: 1720px; }
+  body > :not(.plot-grid) { max-width: 1080px; }
+  .plot-grid { grid-template-columns: repeat(3, minmax(0, 1fr)); }
+}
+@media print {
+  body { max-width: none; margin: 0; padding: 0; font-size: 11pt; }
+  body > :not(.plot-grid) { max-width: none; }
+  nav { display: none; }
+  h1, h2, h3, caption, summary, dt { break-after: avoid; page-break-after: avoid; }
+  table, figure, figure.plot, tr, .warnings, .ok, details, dl.traceability dd {
+    break-inside: avoid; page-break-inside: avoid; }
+  table { display: table; overflow: visible; font-size: 9pt; }
+  figure.plot { overflow: visible; }
+  figure.plot svg { min-width: 0; max-width: 100%; }
+  .plot-grid { grid-template-columns: repeat(2, minmax(0, 1fr)); }
+  th, td, thead { position: static; }
+}
 )";
 
-// Sorting by a click on a column header, and each plot's rendered size written into the DOM
-// (data-rendered-size on its figure), and the page's width beside the window's (data-widths on
-// the body: a wide table scrolls inside its box, so the page never outgrows the window), so that
-// a headless browser's --dump-dom shows them.
+// Run on load, in order: sortable tables, then what a headless browser's --dump-dom shows of the
+// rendered page (the tests read it): each plot's rendered size, its position on the page and the
+// size its smallest text is drawn at (data-rendered-size, data-rendered-at, data-text-px on its
+// figure); the page's width beside the window's (data-widths on the body: wide tables and plots
+// scroll inside their boxes, so the page never outgrows the window) and the body's font size.
+//
+// A sortable table's header cells become buttons (so that a page without script shows no
+// control that does nothing), reachable and pressed from the keyboard like any button; the
+// header cell's aria-sort says how the rows are sorted. sortable(table, sortBy) does this and
+// returns sort(col, up), which orders the rows (sortBy) and marks the header; a page's own
+// script (page_end's `script`) uses it for tables with their own order.
 constexpr const char* kScript = R"(
-for (const fig of document.querySelectorAll('figure.plot')) {
-  const box = fig.querySelector('svg').getBoundingClientRect();
-  fig.dataset.renderedSize = Math.round(box.width) + 'x' + Math.round(box.height);
-}
-document.body.dataset.widths = document.documentElement.scrollWidth + 'x' + window.innerWidth;
-for (const table of document.querySelectorAll('table.sortable')) {
-  table.querySelectorAll('th').forEach((th, col) => {
-    th.addEventListener('click', () => {
-      const body = table.tBodies[0];
-      const up = th.dataset.order !== 'up';
-      th.dataset.order = up ? 'up' : 'down';
-      const key = (tr) => {
-        const td = tr.cells[col];
-        return td.dataset.value !== undefined ? Number(td.dataset.value) : td.textContent;
-      };
-      const rows = Array.from(body.rows);
-      rows.sort((a, b) => (key(a) < key(b) ? -1 : key(a) > key(b) ? 1 : 0) * (up ? 1 : -1));
-      rows.forEach((tr) => body.appendChild(tr));
+const sortable = (table, sortBy) => {
+  const heads = Array.from(table.tHead.rows[0].cells);
+  const sort = (col, up) => {
+    sortBy(col, up);
+    heads.forEach((th, k) => {
+      if (k === col) th.dataset.order = up ? 'up' : 'down';
+      else delete th.dataset.order;
+      th.setAttribute('aria-sort', k !== col ? 'none' : up ? 'ascending' : 'descending');
     });
+  };
+  heads.forEach((th, col) => {
+    const button = document.createElement('button');
+    button.type = 'button';
+    button.className = 'sort';
+    button.append(...th.childNodes);
+    th.append(button);
+    th.setAttribute('aria-sort', 'none');
+    button.addEventListener('click', () => sort(col, th.dataset.order !== 'up'));
+  });
+  return sort;
+};
+for (const table of document.querySelectorAll('table.sortable')) {
+  const body = table.tBodies[0];
+  const key = (td) => td.dataset.value !== undefined ? Number(td.dataset.value) : td.textContent;
+  sortable(table, (col, up) => {
+    const rows = Array.from(body.rows);
+    rows.sort((a, b) => {
+      const x = key(a.cells[col]), y = key(b.cells[col]);
+      return (x < y ? -1 : x > y ? 1 : 0) * (up ? 1 : -1);
+    });
+    rows.forEach((tr) => body.appendChild(tr));
   });
 }
+)";
+
+// After the page's own script: the measurements (see kScript).
+constexpr const char* kMeasure = R"(
+for (const fig of document.querySelectorAll('figure.plot')) {
+  const svg = fig.querySelector('svg');
+  const box = svg.getBoundingClientRect(), at = fig.getBoundingClientRect();
+  fig.dataset.renderedSize = Math.round(box.width) + 'x' + Math.round(box.height);
+  fig.dataset.renderedAt = Math.round(at.left + window.scrollX) + ',' +
+                           Math.round(at.top + window.scrollY);
+  let smallest = Infinity;
+  for (const t of svg.querySelectorAll('text'))
+    smallest = Math.min(smallest, parseFloat(getComputedStyle(t).fontSize));
+  const view = svg.viewBox.baseVal;  // drawn into the content box, inside the border
+  if (smallest < Infinity && view && view.width > 0)
+    fig.dataset.textPx = (smallest * (svg.clientWidth || box.width) / view.width).toFixed(1);
+}
+document.body.dataset.widths = document.documentElement.scrollWidth + 'x' + window.innerWidth;
+document.body.dataset.fontPx = parseFloat(getComputedStyle(document.body).fontSize);
 )";
 
 }  // namespace
@@ -76,8 +155,8 @@ std::string page_start(const std::string& escaped_title) {
          escaped_title + "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n";
 }
 
-std::string page_end() {
-  return std::string("<script>") + kScript + "</script>\n</body>\n</html>\n";
+std::string page_end(const std::string& script) {
+  return std::string("<script>") + kScript + script + kMeasure + "</script>\n</body>\n</html>\n";
 }
 
 std::string num_cell(const std::optional<double>& x) {

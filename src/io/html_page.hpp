@@ -12,8 +12,10 @@ namespace frictionid::html {
 
 // Doctype, head with title and inline style, opening <body>.
 std::string page_start(const std::string& escaped_title);
-// The inline script (plot sizes into the DOM, sortable tables), closing </body></html>.
-std::string page_end();
+// The inline script (sortable tables, then plot sizes into the DOM), closing </body></html>.
+// `script` runs between the two, after the function sortable(table, sortBy) is defined (see
+// html_page.cpp): a page's own sorting, e.g. summary.html's.
+std::string page_end(const std::string& script = "");
 
 // A table cell holding a number: the shown text rounded (num in io/report_parts.hpp), the exact
 // value (shortest text that reads back to the same double, as in the JSON reports) in data-value

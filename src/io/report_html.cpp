@@ -23,18 +23,6 @@ using html::num_cell;
 using html::text_cell;
 using svg::escape;
 
-std::string correlation_colour(double c) {
-  // White at 0, red towards +1, blue towards -1.
-  const double t = std::min(1.0, std::abs(c));
-  const int base[3] = {255, 255, 255};
-  const int pos[3] = {214, 39, 40}, neg[3] = {31, 119, 180};
-  const int* end = c >= 0 ? pos : neg;
-  int rgb[3];
-  for (int k = 0; k < 3; ++k)
-    rgb[k] = static_cast<int>(std::lround(base[k] + (end[k] - base[k]) * t));
-  return fmt::format("#{:02x}{:02x}{:02x}", rgb[0], rgb[1], rgb[2]);
-}
-
 // An id for a heading: letters, digits, '-' and '_' only.
 std::string anchor(const std::string& s) {
   std::string out = "plots-";
@@ -99,7 +87,7 @@ void parameter_section(std::string& h, const FitResult& r) {
   line(h,
        "<table class=\"sortable\" id=\"parameter-table\"><thead><tr><th>name</th><th>value</th>"
        "<th>stderr</th><th>95% interval low</th><th>95% interval high</th>"
-       "<th>sandwich stderr</th>" +
+       "<th>interval method</th><th>sandwich stderr</th>" +
            std::string(r.bootstrap_replicates > 0 ? "<th>bootstrap stderr</th><th>bootstrap "
                                                     "low</th><th>bootstrap high</th>"
                                                   : "") +
@@ -111,6 +99,7 @@ void parameter_section(std::string& h, const FitResult& r) {
     const EstimateText e = estimate_text(p.value, p.std_error);
     row += text_cell(p.value, e.value_alone()) + text_cell(p.std_error, e.error_alone());
     row += interval_cells(chosen_interval(r, p));
+    row += "<td class=\"interval-method\">" + escape(interval_method(r, p)) + "</td>";
     row += stderr_cell(p.std_error_sandwich);
     if (r.bootstrap_replicates > 0)
       row += stderr_cell(p.std_error_bootstrap) + interval_cells(p.ci95_bootstrap);
@@ -123,8 +112,10 @@ void parameter_section(std::string& h, const FitResult& r) {
   }
   line(h, "</tbody></table>");
   line(h,
-       std::string("<p>Click a column header to sort. The interval is ") + interval_caption(r) +
-           "; the sandwich stderr assumes nothing about the noise." +
+       std::string("<p>Click a column header to sort. The 95 % interval is ") +
+           interval_caption(r) +
+           "; the column interval method names each row's. The sandwich stderr assumes nothing "
+           "about the noise." +
            (r.bootstrap_replicates > 0 ? " Bootstrap: " + std::to_string(r.bootstrap_replicates) +
                                              " wild (Rademacher) refits, percentile interval."
                                        : std::string()) +
@@ -139,8 +130,9 @@ std::string correlation_cell(const FitResult& r, std::size_t i, std::size_t k) {
   const double c = r.correlation[i][k];
   std::string text = fmt::format("{:.2f}", c);
   if (text == "-0.00") text = "0.00";
-  return fmt::format("<td style=\"background:{};color:{}\" data-value=\"{}\">{}</td>",
-                     correlation_colour(c), std::abs(c) > 0.6 ? "#ffffff" : "#222222", c, text);
+  const std::string background = correlation_colour(c);
+  return fmt::format("<td style=\"background:{};color:{}\" data-value=\"{}\">{}</td>", background,
+                     text_colour_on(background), c, text);
 }
 
 void correlation_section(std::string& h, const FitResult& r) {
@@ -164,13 +156,17 @@ void correlation_section(std::string& h, const FitResult& r) {
        "apart; their stderrs are then large together.</p>");
 }
 
+// One section per kind of plot, its channels' plots side by side in a grid (three columns on a
+// wide screen, one on a narrow one).
 void plot_sections(std::string& h, const std::vector<ReportPlot>& plots,
                    const std::vector<std::string>& headings) {
   if (plots.empty()) line(h, "<h2>Plots</h2><p>No channel had predictions to plot.</p>");
   for (const auto& hd : headings) {
     line(h, fmt::format("<h2 id=\"{}\">{}</h2>", anchor(hd), escape(hd)));
+    line(h, fmt::format("<div class=\"plot-grid\" data-kind=\"{}\">", escape(hd)));
     for (const auto& p : plots)
       if (p.heading == hd) line(h, plot_figure(p));
+    line(h, "</div>");
   }
 }
 
@@ -193,13 +189,17 @@ void statistics_section(std::string& h, const FitResult& r) {
   line(h, "</tbody></table>");
   if (r.channel_summaries.empty()) return;
   line(h,
-       "<table class=\"sortable\"><thead><tr><th>channel</th><th>rows</th><th>RMSE</th>"
-       "<th>R²</th><th>scale σ</th><th>scale source</th></tr></thead><tbody>");
+       "<table class=\"sortable\"><thead><tr><th>channel</th><th>unit</th><th>rows</th>"
+       "<th>RMSE</th><th>R²</th><th>scale σ</th><th>scale source</th></tr></thead><tbody>");
   for (const auto& s : r.channel_summaries)
-    line(h, fmt::format("<tr><td>{}</td>{}{}{}{}<td>{}</td></tr>", channel_name(s.channel),
-                        num_cell(static_cast<double>(s.rows)), num_cell(s.rmse), num_cell(s.r2),
-                        num_cell(s.scale), escape(s.scale_source)));
+    line(h,
+         fmt::format("<tr><td>{}</td><td>{}</td>{}{}{}{}<td>{}</td></tr>", channel_name(s.channel),
+                     channel_unit(s.channel), num_cell(static_cast<double>(s.rows)),
+                     num_cell(s.rmse), num_cell(s.r2), num_cell(s.scale), escape(s.scale_source)));
   line(h, "</tbody></table>");
+  line(h,
+       "<p>RMSE and the scale σ are in the channel's unit. N is the normal load; the newton is "
+       "written out.</p>");
 }
 
 void solver_section(std::string& h, const FitResult& r) {
@@ -261,6 +261,34 @@ void glossary_section(std::string& h) {
 }
 
 }  // namespace
+
+std::string correlation_colour(double c) {
+  // White at 0, red towards +1, blue towards -1.
+  const double t = std::isfinite(c) ? std::min(1.0, std::abs(c)) : 0.0;
+  const int base[3] = {255, 255, 255};
+  const int pos[3] = {214, 39, 40}, neg[3] = {31, 119, 180};
+  const int* end = c >= 0 ? pos : neg;
+  int rgb[3];
+  for (int k = 0; k < 3; ++k)
+    rgb[k] = static_cast<int>(std::lround(base[k] + (end[k] - base[k]) * t));
+  return fmt::format("#{:02x}{:02x}{:02x}", rgb[0], rgb[1], rgb[2]);
+}
+
+const char* text_colour_on(const std::string& background) {
+  // WCAG 2 relative luminance of an sRGB colour "#rrggbb".
+  double luminance = 1.0;
+  if (background.size() == 7 && background[0] == '#') {
+    const double weight[3] = {0.2126, 0.7152, 0.0722};
+    luminance = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double v = std::stoi(background.substr(1 + 2 * k, 2), nullptr, 16) / 255.0;
+      luminance += weight[k] * (v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+    }
+  }
+  // Contrast (L1 + 0.05) / (L2 + 0.05) against white (L = 1) and against black (L = 0): the
+  // larger is at least 4.58, where the two are equal (L = 0.179).
+  return 1.05 / (luminance + 0.05) >= (luminance + 0.05) / 0.05 ? "#ffffff" : "#000000";
+}
 
 std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots,
                              const Provenance& provenance, const std::string& contact) {

@@ -83,8 +83,9 @@ std::string report_markdown(const FitResult& r, const std::vector<std::string>& 
     return "[" + lo + ", " + hi + "]";
   };
   line(std::string("| name | value ± stderr | 95% CI | sandwich stderr |") +
-       (boot ? " bootstrap stderr | bootstrap 95% CI |" : "") + " initial | bounds | note |");
-  line(std::string("|---|---|---|---|") + (boot ? "---|---|" : "") + "---|---|---|");
+       (boot ? " bootstrap stderr | bootstrap 95% CI |" : "") +
+       " initial | bounds | note | 95% CI method |");
+  line(std::string("|---|---|---|---|") + (boot ? "---|---|" : "") + "---|---|---|---|");
   for (const auto& p : r.parameters) {
     std::string row = fmt::format(
         "| {} | {} | {} | {} |", cell(p.name), estimate_text(p.value, p.std_error).joined(),
@@ -92,12 +93,13 @@ std::string report_markdown(const FitResult& r, const std::vector<std::string>& 
     if (boot)
       row +=
           fmt::format(" {} | {} |", stderr_text(p.std_error_bootstrap), interval(p.ci95_bootstrap));
-    line(row +
-         fmt::format(" {} | [{}, {}] | {} |", num(p.initial), num(p.lower), num(p.upper),
-                     parameter_note(p, "at bound (stderr not meaningful)", "not determined")));
+    line(row + fmt::format(" {} | [{}, {}] | {} | {} |", num(p.initial), num(p.lower), num(p.upper),
+                           parameter_note(p, "at bound (stderr not meaningful)", "not determined"),
+                           cell(interval_method(r, p))));
   }
   line("");
-  line(std::string("95% CI: ") + interval_caption(r) + "." +
+  line(std::string("95% CI: ") + interval_caption(r) +
+       "; the column 95% CI method names each row's." +
        (boot ? fmt::format(" Bootstrap: {} wild (Rademacher) refits, percentile interval.",
                            r.bootstrap_replicates)
              : ""));
@@ -120,11 +122,16 @@ std::string report_markdown(const FitResult& r, const std::vector<std::string>& 
                                               : "from absolute σ (not rescaled)"));
   line("");
   if (!r.channel_summaries.empty()) {
-    line("| channel | rows | RMSE | R² | scale σ | scale source |");
-    line("|---|---|---|---|---|---|");
+    line("| channel | unit | rows | RMSE | R² | scale σ | scale source |");
+    line("|---|---|---|---|---|---|---|");
     for (const auto& s : r.channel_summaries)
-      line(fmt::format("| {} | {} | {} | {} | {} | {} |", channel_name(s.channel), s.rows,
-                       num(s.rmse), num(s.r2), num(s.scale), cell(s.scale_source)));
+      line(fmt::format("| {} | {} | {} | {} | {} | {} | {} |", channel_name(s.channel),
+                       channel_unit(s.channel), s.rows, num(s.rmse), num(s.r2), num(s.scale),
+                       cell(s.scale_source)));
+    line("");
+    line(
+        "RMSE and the scale σ are in the channel's unit. N is the normal load; the newton is "
+        "written out.");
     line("");
   }
 

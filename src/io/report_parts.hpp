@@ -14,10 +14,16 @@
 
 namespace frictionid {
 
-// The 95 % interval of p that r's interval method puts first (ci95 for "model", else the
-// sandwich or profile interval), and the words for its caption.
+// The 95 % interval of p that the reports show in p's row: the one r's interval method puts
+// first (ci95 for "model", else the sandwich or profile interval), except that under "model" a
+// parameter that has a profile interval (computed because it is nearly collinear with another
+// one, |correlation| > 0.99) shows that. interval_method names the row's method for the
+// parameter tables: "model (t·stderr)", "profile" (with "open below/above/on both sides (ends at
+// the bound)" where a side did not close), "HC3 (t·sandwich stderr)", or "—" without an
+// interval. interval_caption: the words for the tables' caption.
 const std::optional<std::array<double, 2>>& chosen_interval(const FitResult& r,
                                                             const ParameterEstimate& p);
+std::string interval_method(const FitResult& r, const ParameterEstimate& p);
 const char* interval_caption(const FitResult& r);
 
 // %.6g-style with the exponent as "× 10ⁿ" (plain_number in io/estimate_text.hpp); never prints
@@ -31,6 +37,12 @@ std::string num(const std::optional<double>& x);
 // value with why it has no error: "h = 0 (fixed)", "a = 4 (at a bound)", "m = 7.5 (not
 // determined)". Plain text; the caller escapes it.
 std::vector<std::string> result_items(const FitResult& r);
+
+// The unit of channel c in labels and table headers: "newton" for the forces T_x, T_y, "newton
+// metre" for the moments. Spelled out, never "N": on these pages N is the normal load (the
+// model's symbol and the data's column), so "N [N]" would name the load in itself. Labels read
+// "T_x [newton]", "N [newton]" (docs/design.md §4.3, "Units").
+const char* channel_unit(Channel c);
 
 // The channel names joined by ", "; "none" for no channel.
 std::string join_channels(const std::vector<Channel>& cs);
@@ -71,8 +83,10 @@ std::string plotted_rows_note(std::size_t rows);
 
 // One plot of the report: written as `file` next to report.md and inlined in report.html.
 struct ReportPlot {
-  std::string file;     // e.g. "collapse_T_x.svg"
-  std::string heading;  // the section it belongs to, e.g. "T_x" or "T_x against slip_angle"
+  std::string file;  // e.g. "collapse_T_x.svg"
+  // The section it belongs to: its kind ("Collapse plots", "Measured and fitted", ...,
+  // "Against slip_angle" for --plot-x), whose plots, one per channel, stand side by side.
+  std::string heading;
   std::string caption;  // what is drawn and how rows were chosen
   std::string svg;      // an <svg> element (io/svg_plot.hpp), no namespace attribute
 };
@@ -85,6 +99,15 @@ std::vector<ReportPlot> make_plots(const FitResult& r, const Dataset& d, const R
 
 // A plot as an HTML <figure>: the inline SVG and a caption linking its file (no final newline).
 std::string plot_figure(const ReportPlot& p);
+
+// The correlation heat map's cell colour for a correlation c in [-1, 1] ("#rrggbb"): white at
+// 0, towards red at +1 and blue at -1.
+std::string correlation_colour(double c);
+
+// The text colour, "#000000" or "#ffffff", with the higher WCAG 2 contrast against the
+// background "#rrggbb" (from its relative luminance): at least 4.58:1 on any colour, above the
+// 4.5:1 of WCAG AA.
+const char* text_colour_on(const std::string& background);
 
 // report.html from the plots make_plots gave.
 std::string report_html_page(const FitResult& r, const std::vector<ReportPlot>& plots,

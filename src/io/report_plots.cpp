@@ -21,6 +21,7 @@
 
 #include <frictionid/model_comparison.hpp>
 #include "identify/row_chunks.hpp"
+#include "io/palette.hpp"
 #include "io/svg_plot.hpp"
 #include "io/text.hpp"
 
@@ -30,20 +31,19 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// More distinct values than this in the colouring column are binned: more colours are not told
-// apart.
-constexpr std::size_t kMaxColourGroups = 8;
-constexpr const char* kPalette[kMaxColourGroups] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
-                                                    "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
+// More distinct values than this in the colouring column are binned: one colour of the
+// palette (io/palette.hpp) each, and more colours are not told apart.
+constexpr std::size_t kMaxColourGroups = palette::kSeries.size();
 // Per channel: collapse, measured and fitted, residuals against eps and against the fitted
-// value, normal quantiles.
+// value, normal quantiles. Each kind is a section of the page with every channel's plot of
+// that kind side by side (the plot's heading).
 constexpr std::size_t kPlotsPerChannel = 5;
-constexpr const char* kMeasuredColour = "#1f77b4";
-constexpr const char* kFittedColour = "#d62728";
+constexpr const char* kCollapseHeading = "Collapse plots";
+constexpr const char* kFitHeading = "Measured and fitted";
+constexpr const char* kResidualHeading = "Whitened residuals against eps";
+constexpr const char* kResidualFittedHeading = "Whitened residuals against the fitted value";
+constexpr const char* kQuantileHeading = "Normal quantiles of the whitened residuals";
 
-const char* channel_unit(Channel c) {
-  return (c == Channel::T_x || c == Channel::T_y) ? "N" : "N m";
-}
 const char* collapse_divisor(Channel c) {
   return (c == Channel::T_x || c == Channel::T_y) ? "N" : "(N R)";
 }
@@ -322,7 +322,7 @@ std::vector<svg::Series> group_dots(const std::vector<std::vector<std::size_t>>&
   std::vector<svg::Series> dots;
   for (std::size_t g = 0; g < members.size(); ++g) {
     if (members[g].empty()) continue;
-    svg::Series s(groups.names[g], kPalette[g % kMaxColourGroups], svg::Mark::Dots);
+    svg::Series s(groups.names[g], palette::series(g), svg::Mark::Dots);
     s.tag = groups.names[g];
     for (std::size_t i : members[g]) {
       s.x.push_back(x_of(i));
@@ -361,7 +361,7 @@ std::vector<svg::Series> fitted_lines(const FitResult& r, const Dataset& d, Chan
     for (auto& [key, rows] : curves) {
       std::stable_sort(rows.begin(), rows.end(),
                        [&](std::size_t a, std::size_t b) { return axis.x[a] < axis.x[b]; });
-      svg::Series line("", kPalette[g % kMaxColourGroups], svg::Mark::Line);
+      svg::Series line("", palette::series(g), svg::Mark::Line);
       line.outline = true;
       line.tag = groups.names[g] + "; " + curve_tag(std::get<0>(key));
       if (by_load)
@@ -395,7 +395,7 @@ bool measured_and_fitted(svg::Plot& p, const FitResult& r, const Dataset& d, Cha
     for (auto& s : lines) p.series.push_back(std::move(s));
     return true;
   }
-  svg::Series fitted("fitted", "#222222", svg::Mark::Dots);
+  svg::Series fitted("fitted", palette::kReference, svg::Mark::Dots);
   fitted.tag = "fitted";
   fitted.dot_size = 2.2;
   for (std::size_t i : rows.rows) {
@@ -424,7 +424,7 @@ ReportPlot collapse_plot(const FitResult& r, const Dataset& d, Channel c, const 
 
   ReportPlot out;
   out.file = "collapse_" + name + ".svg";
-  out.heading = name;
+  out.heading = kCollapseHeading;
   out.caption = fmt::format(
       "Collapse plot: measured {0} divided by {1} and by its parity sign (coloured dots), "
       "against eps. The parity sign is sgn v_x for T_x, sgn omega for T_y and M_z: the signs the "
@@ -458,9 +458,9 @@ ReportPlot fit_plot(const FitResult& r, const Dataset& d, Channel c, const EpsAx
   const bool lines =
       measured_and_fitted(p, r, d, c, axis, rows, groups, true, [](std::size_t) { return 1.0; });
   p.notes.push_back(groups.rule + (lines ? "; lines: the fitted model" : ""));
-  ReportPlot out{"fit_" + name + ".svg", name, "", svg::render(p)};
+  ReportPlot out{"fit_" + name + ".svg", kFitHeading, "", svg::render(p)};
   out.caption = fmt::format(
-      "Measured {0} in {1} against eps (dots, {2}) and the fitted model over them: {3}.", name,
+      "Measured {0}, in {1}, against eps (dots, {2}) and the fitted model over them: {3}.", name,
       channel_unit(c), groups.rule,
       lines ? "one line per colour, slip direction, spin sign, tilt sign, load and radius, "
               "sorted by eps"
@@ -564,7 +564,7 @@ ReportPlot residual_plot(const Whitened& w, Channel c, const EpsAxis& axis, cons
   p.x_markers = axis.markers;
   p.y_reference = 0.0;
   residual_dots(p, axis.x, w, rows, groups);
-  ReportPlot out{"residuals_" + name + ".svg", name, "", svg::render(p)};
+  ReportPlot out{"residuals_" + name + ".svg", kResidualHeading, "", svg::render(p)};
   out.caption = residual_caption(name, w) + " Colours: " + groups.rule + ".";
   if (!rows.notes.empty()) out.caption += " (" + join_notes(rows.notes) + ".)";
   return out;
@@ -581,7 +581,7 @@ ReportPlot residual_fitted_plot(const FitResult& r, const Whitened& w, Channel c
   p.y_label = kWhitenedLabel;
   p.y_reference = 0.0;
   residual_dots(p, r.fitted[static_cast<int>(c)], w, rows, groups);
-  ReportPlot out{"residuals_fitted_" + name + ".svg", name, "", svg::render(p)};
+  ReportPlot out{"residuals_fitted_" + name + ".svg", kResidualFittedHeading, "", svg::render(p)};
   out.caption = residual_caption(name, w) +
                 " Against the fitted value, a funnel means the noise model's sigma does not "
                 "follow the data's. Colours: " +
@@ -601,14 +601,14 @@ ReportPlot qq_plot(const Whitened& w, Channel c, const ChannelRows& rows) {
   p.notes = rows.notes;
   p.x_label = "standard normal quantile";
   p.y_label = "sorted " + std::string(kWhitenedLabel);
-  svg::Series dots("whitened residuals", kMeasuredColour, svg::Mark::Dots);
+  svg::Series dots("whitened residuals", palette::series(0), svg::Mark::Dots);
   dots.tag = "quantiles";
   const double n = static_cast<double>(z.size());
   for (std::size_t k = 0; k < z.size(); ++k) {
     dots.x.push_back(normal_quantile((static_cast<double>(k) + 0.5) / n));
     dots.y.push_back(z[k]);
   }
-  svg::Series line("y = x", kFittedColour, svg::Mark::Line);
+  svg::Series line("y = x", palette::kReference, svg::Mark::Line);
   line.dash = "6 4";
   if (!z.empty()) {
     const double q = std::max(std::fabs(dots.x.front()), 1.0);
@@ -617,7 +617,7 @@ ReportPlot qq_plot(const Whitened& w, Channel c, const ChannelRows& rows) {
   }
   p.series.push_back(std::move(dots));
   p.series.push_back(std::move(line));
-  ReportPlot out{"qq_" + name + ".svg", name, "", svg::render(p)};
+  ReportPlot out{"qq_" + name + ".svg", kQuantileHeading, "", svg::render(p)};
   out.caption = fmt::format(
       "The whitened residuals of {} ({}) sorted, against the quantiles of the standard normal "
       "at (k − 0.5)/n: on the dashed line y = x when they are normal with standard deviation 1. "
@@ -651,7 +651,7 @@ ReportPlot column_plot(const FitResult& r, const Dataset& d, Channel c, const st
       members, groups, [&](std::size_t i) { return x[i]; },
       [&](std::size_t i) { return d.value[ci][i]; });
   for (auto& s : dots) p.series.push_back(std::move(s));
-  svg::Series fitted("fitted", "#222222", svg::Mark::Dots);
+  svg::Series fitted("fitted", palette::kReference, svg::Mark::Dots);
   fitted.tag = "fitted";
   fitted.dot_size = 2.0;
   for (std::size_t i : rows.rows) {
@@ -659,8 +659,8 @@ ReportPlot column_plot(const FitResult& r, const Dataset& d, Channel c, const st
     fitted.y.push_back(r.fitted[ci][i]);
   }
   p.series.push_back(std::move(fitted));
-  ReportPlot out{fmt::format("x_{}_{}.svg", file_part(column), name),
-                 fmt::format("{} against {}", name, column), "", svg::render(p)};
+  ReportPlot out{fmt::format("x_{}_{}.svg", file_part(column), name), "Against " + column, "",
+                 svg::render(p)};
   out.caption = fmt::format(
       "Measured {} (coloured dots, {}) and fitted (small dark dots, drawn over them) against the "
       "column {}.",
@@ -692,16 +692,34 @@ std::string plotted_rows_note(std::size_t rows) {
 const std::optional<std::array<double, 2>>& chosen_interval(const FitResult& r,
                                                             const ParameterEstimate& p) {
   if (r.intervals == IntervalMethod::Sandwich) return p.ci95_sandwich;
-  if (r.intervals == IntervalMethod::Profile) return p.ci95_profile;
+  // Under the default method a parameter has a profile interval only when it is nearly
+  // collinear with another one, where the symmetric interval can miss on one side.
+  if (r.intervals == IntervalMethod::Profile || p.ci95_profile) return p.ci95_profile;
   return p.ci95;
+}
+
+std::string interval_method(const FitResult& r, const ParameterEstimate& p) {
+  if (!chosen_interval(r, p)) return "—";
+  if (r.intervals == IntervalMethod::Sandwich) return "HC3 (t·sandwich stderr)";
+  if (r.intervals == IntervalMethod::Model && !p.ci95_profile) return "model (t·stderr)";
+  if (!p.profile_closed[0] || !p.profile_closed[1])
+    return std::string("profile, open ") +
+           (p.profile_closed[0]   ? "above"
+            : p.profile_closed[1] ? "below"
+                                  : "on both sides") +
+           " (ends at the bound)";
+  return "profile";
 }
 
 const char* interval_caption(const FitResult& r) {
   if (r.intervals == IntervalMethod::Sandwich)
-    return "value ± t(0.975, dof) × the HC3 sandwich stderr";
+    return "value ± t(0.975, dof) × the HC3 sandwich stderr (HC3)";
   if (r.intervals == IntervalMethod::Profile)
-    return "where the profile of the cost rises by t(0.975, dof)² (docs/physics.md §8.12)";
-  return "value ± t(0.975, dof) × stderr";
+    return "where the profile of the cost rises by t(0.975, dof)² (profile, docs/physics.md "
+           "§8.12)";
+  return "value ± t(0.975, dof) × stderr (model), except for parameters with |correlation| > "
+         "0.99 to another one: their symmetric interval can miss on one side, and theirs is "
+         "where the profile of the cost rises by t(0.975, dof)² (profile, docs/physics.md §8.12)";
 }
 
 const ChannelSummary* find_summary(const FitResult& r, Channel c) {

@@ -49,6 +49,10 @@ std::string provenance_markdown(const Provenance& p) {
   return md + "\n";
 }
 
+const char* channel_unit(Channel c) {
+  return (c == Channel::T_x || c == Channel::T_y) ? "newton" : "newton metre";
+}
+
 std::string join_channels(const std::vector<Channel>& cs) {
   std::string out;
   for (std::size_t i = 0; i < cs.size(); ++i)

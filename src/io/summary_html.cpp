@@ -15,6 +15,7 @@
 #include <frictionid/parameters.hpp>
 #include "io/estimate_text.hpp"
 #include "io/html_page.hpp"
+#include "io/palette.hpp"
 #include "io/report_parts.hpp"
 #include "io/summary_columns.hpp"
 #include "io/svg_plot.hpp"
@@ -25,10 +26,9 @@ namespace {
 using html::isolated;
 using svg::escape;
 
-constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e",
-                                    "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
-// More series than this are drawn as one: a legend of dozens of colours tells nothing apart.
-constexpr std::size_t kMaxSeries = 10;
+// More series than the palette has colours (io/palette.hpp) are drawn as one: a legend of
+// dozens of colours tells nothing apart.
+constexpr std::size_t kMaxSeries = palette::kSeries.size();
 // Error bars reach at most this many times the spread of the values (or the median bar, if
 // larger) beyond them, so that one undetermined parameter (a huge stderr) does not flatten the
 // trend of all the others.
@@ -36,14 +36,16 @@ constexpr double kMaxBarReach = 3.0;
 
 // Style and sorting for the runs table. Missing values sort last in both directions, numbers
 // (data-value) before text, ties keep the label order; "#sort=COL" or "#sort=-COL" in the URL
-// sorts by the header whose data-key is COL when the page loads.
+// sorts by the header whose data-key is COL when the page loads. The headers become buttons with
+// aria-sort through sortable() of the page's script (io/html_page.cpp).
 constexpr const char* kStyle = R"(
 .table-scroll { overflow-x: auto; }
-table.runs th { cursor: pointer; white-space: nowrap; }
-table.runs th[data-order="up"]::after { content: " \25B2"; }
-table.runs th[data-order="down"]::after { content: " \25BC"; }
+table.runs th { white-space: nowrap; }
 table.runs tr.failed td { background: #fde8e8; }
 table.runs td.status-failed { color: #a40000; font-weight: bold; }
+@media print {
+  .table-scroll { overflow: visible; }
+}
 )";
 constexpr const char* kSortScript = R"(
 (() => {
@@ -58,16 +60,12 @@ constexpr const char* kSortScript = R"(
     if (typeof a !== typeof b) return typeof a === 'number' ? -1 : 1;
     return (a < b ? -1 : a > b ? 1 : 0) * (up ? 1 : -1);
   };
-  const sortBy = (col, up) => {
-    heads.forEach((th) => delete th.dataset.order);
-    heads[col].dataset.order = up ? 'up' : 'down';
+  const sortBy = sortable(table, (col, up) => {
     const rows = Array.from(body.rows);
     rows.sort((a, b) => compare(key(a.cells[col]), key(b.cells[col]), up) ||
                         Number(a.dataset.index) - Number(b.dataset.index));
     rows.forEach((tr) => body.appendChild(tr));
-  };
-  heads.forEach((th, col) =>
-      th.addEventListener('click', () => sortBy(col, th.dataset.order !== 'up')));
+  });
   // A malformed escape in the fragment (#sort=%E0%A4%A) makes decodeURIComponent throw: the
   // fragment is then read as it is, and the page works without the sort it cannot name.
   let hash = location.hash;
@@ -81,6 +79,15 @@ constexpr const char* kSortScript = R"(
   if (col >= 0) sortBy(col, m[1] !== '-');
 })();
 )";
+
+// A covariate's name with its unit, for a header or an axis: the covariates every run has
+// (io/summary_table.hpp) have known units, a manifest's or group's column has none we know. The
+// newton is written out: N is the load (docs/design.md §4.3, "Units").
+std::string covariate_label(const std::string& name) {
+  if (name == "mean_N") return name + " [newton]";
+  if (name == "mean_speed" || name == "mean_omega_R") return name + " [m/s]";
+  return name;
+}
 
 void line(std::string& h, const std::string& s) {
   (h += s) += '\n';
@@ -161,7 +168,8 @@ void runs_section(std::string& h, const std::vector<SummaryRow>& rows,
   head +=
       "<th data-key=\"reduced_chi2\">reduced χ²</th><th data-key=\"warnings\">warnings</th>"
       "<th data-key=\"error\">error</th>";
-  for (const auto& c : covariates) head += fmt::format("<th data-key=\"{0}\">{0}</th>", escape(c));
+  for (const auto& c : covariates)
+    head += fmt::format("<th data-key=\"{}\">{}</th>", escape(c), escape(covariate_label(c)));
   line(h, head + "</tr></thead><tbody>");
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const SummaryRow& row = rows[i];
@@ -396,7 +404,7 @@ std::string trend_figure(const Trends& t, const std::string& param, const std::s
   std::vector<svg::Series> dots(n_series), bars(n_series);
   std::size_t clipped = 0;
   for (std::size_t s = 0; s < n_series; ++s) {
-    const std::string colour = kColours[s % (sizeof kColours / sizeof *kColours)];
+    const std::string colour = palette::series(s);
     dots[s] = {t.series_labels[s], colour, svg::Mark::Dots, {}, {}};
     bars[s] = {"", colour, svg::Mark::Line, {}, {}};
   }
@@ -419,7 +427,7 @@ std::string trend_figure(const Trends& t, const std::string& param, const std::s
   }
   svg::Plot plot;
   plot.title = param + " against " + x;
-  plot.x_label = x;
+  plot.x_label = covariate_label(x);
   plot.y_label = param;
   if (clipped > 0)
     plot.notes.push_back(fmt::format("error bars of {} run{} cut (no cap at the cut end)", clipped,
@@ -460,10 +468,13 @@ void trends_section(std::string& h, const std::vector<SummaryRow>& rows, const s
   }
   std::vector<SummaryRow> plotted;
   for (const auto& r : t.runs) plotted.push_back(*r.row);
+  // The parameters' plots side by side (three columns on a wide screen, one on a narrow one).
+  line(h, "<div class=\"plot-grid\" data-kind=\"trends\">");
   for (const auto& param : summary_parameter_names(plotted)) {
     const std::string figure = trend_figure(t, param, x);
     if (!figure.empty()) line(h, figure);
   }
+  line(h, "</div>");
 }
 
 }  // namespace
@@ -487,9 +498,8 @@ std::string summary_html(const std::vector<SummaryRow>& rows, const SummaryHtmlO
   line(h, "<nav><a href=\"#runs-heading\">Runs</a><a href=\"#trends\">Trends</a></nav>");
   problems_section(h, rows);
   runs_section(h, rows, o);
-  line(h, std::string("<script>") + kSortScript + "</script>");
   trends_section(h, rows, o.trend_x);
-  return h + html::provenance_section(o.provenance) + html::page_end();
+  return h + html::provenance_section(o.provenance) + html::page_end(kSortScript);
 }
 
 }  // namespace frictionid

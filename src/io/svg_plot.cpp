@@ -14,7 +14,48 @@ namespace {
 
 constexpr double kLeft = 74, kRight = 18, kTitleLine = 22, kNoteLine = 15;
 constexpr double kLegendRow = 18, kBelowAxis = 44;
-constexpr double kCharWidth = 6.6;  // average width of an 11 px sans-serif character
+constexpr double kCharWidth = 6.6;        // average width of an 11 px sans-serif character
+constexpr double kLegendCharWidth = 6.2;  // of a legend's (labels are short, digits and words)
+constexpr double kTitleCharWidth = 8.4;   // of a 14 px bold one
+constexpr double kTitleRow = 17;          // a wrapped title's line spacing
+constexpr double kMinAxesHeight = 200;    // the plot grows taller rather than squeeze its axes
+
+// Characters of UTF-8 text (its bytes that do not continue a sequence).
+std::size_t characters(const std::string& s) {
+  std::size_t n = 0;
+  for (char c : s) n += (static_cast<unsigned char>(c) & 0xc0) != 0x80;
+  return n;
+}
+
+// Text in lines of at most `width` pixels at `char_width` per character, broken at spaces (a
+// longer word keeps a line of its own).
+std::vector<std::string> wrap(const std::string& text, double width, double char_width) {
+  const auto most = static_cast<std::size_t>(std::max(8.0, width / char_width));
+  std::vector<std::string> lines;
+  std::string line;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(start, end - start);
+    if (!line.empty() && characters(line) + 1 + characters(word) > most) {
+      lines.push_back(line);
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+    start = end + 1;
+  }
+  if (!line.empty() || lines.empty()) lines.push_back(line);
+  return lines;
+}
+
+// Where the parts of a plot go: the title and notes wrapped to the width, and the height, which
+// is the plot's or more, so that the axes keep at least kMinAxesHeight.
+struct Frame {
+  double W = 0, H = 0;
+  std::vector<std::string> title, notes;  // lines
+  double top = 0, bottom = 0;             // of the axes: their distance from the edges
+};
 
 // Pixel coordinates with one decimal: enough for a 3 px dot, and byte-stable. Written by hand:
 // a report draws some 10^5 coordinates, and this is several times faster than fmt here.
@@ -79,7 +120,7 @@ std::vector<LegendItem> legend_layout(const Plot& p) {
   double x = 0, row = 0;
   for (const auto& s : p.series) {
     if (s.label.empty()) continue;
-    const double w = 26 + kCharWidth * static_cast<double>(s.label.size()) + 14;
+    const double w = 26 + kLegendCharWidth * static_cast<double>(characters(s.label)) + 10;
     if (x > 0 && x + w > usable) x = 0, ++row;
     legend.push_back({&s, x, row});
     x += w;
@@ -105,21 +146,42 @@ void set_ranges(const Plot& p, Axis& ax, Axis& ay) {
   std::tie(ay.lo, ay.hi) = padded_range(std::move(ys), ay.log, 0.06);
 }
 
-// The <svg> start tag, background, title and notes.
-void append_header(std::string& o, const Plot& p) {
-  const double W = p.width;
+}  // namespace
+
+std::string description(const Plot& p) {
+  std::string d = p.title.empty() ? std::string("Plot") : p.title;
+  if (!p.y_label.empty() || !p.x_label.empty())
+    d += ". " + (p.y_label.empty() ? std::string("values") : p.y_label) + " against " +
+         (p.x_label.empty() ? std::string("x") : p.x_label) + (p.log_x ? " (log scale)" : "");
+  std::vector<std::string> labels;
+  for (const auto& s : p.series)
+    if (!s.label.empty() && std::find(labels.begin(), labels.end(), s.label) == labels.end())
+      labels.push_back(s.label);
+  for (std::size_t i = 0; i < labels.size(); ++i) d += (i ? ", " : ". Series: ") + labels[i];
+  for (const auto& note : p.notes) d += ". " + note;
+  return d + ".";
+}
+
+namespace {
+
+// The <svg> start tag (an image to assistive technology, named by its aria-label and its
+// <title>, the first child), background, title and notes.
+void append_header(std::string& o, const Plot& p, const Frame& f) {
   o += fmt::format(
-      "<svg viewBox=\"0 0 {0} {1}\" width=\"{0}\" height=\"{1}\" font-family=\"sans-serif\" "
-      "font-size=\"11\">\n<rect width=\"{0}\" height=\"{1}\" fill=\"#ffffff\"/>\n",
-      p.width, p.height);
-  o += fmt::format(
-      "<text x=\"{}\" y=\"17\" text-anchor=\"middle\" font-size=\"14\" "
-      "font-weight=\"bold\">{}</text>\n",
-      px(W / 2), escape(p.title));
-  for (std::size_t i = 0; i < p.notes.size(); ++i)
+      "<svg viewBox=\"0 0 {0} {1}\" width=\"{0}\" height=\"{1}\" role=\"img\" "
+      "aria-label=\"{2}\" font-family=\"sans-serif\" font-size=\"11\">\n<title>{3}</title>\n"
+      "<rect width=\"{0}\" height=\"{1}\" fill=\"#ffffff\"/>\n",
+      f.W, f.H, escape(description(p)), escape(p.title.empty() ? description(p) : p.title));
+  for (std::size_t i = 0; i < f.title.size(); ++i)
+    o += fmt::format(
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"14\" "
+        "font-weight=\"bold\">{}</text>\n",
+        px(f.W / 2), px(17 + kTitleRow * static_cast<double>(i)), escape(f.title[i]));
+  const double notes_from = kTitleLine + kTitleRow * static_cast<double>(f.title.size() - 1) + 12;
+  for (std::size_t i = 0; i < f.notes.size(); ++i)
     o += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"#555555\">{}</text>\n",
-                     px(W / 2), px(kTitleLine + 12 + kNoteLine * static_cast<double>(i)),
-                     escape(p.notes[i]));
+                     px(f.W / 2), px(notes_from + kNoteLine * static_cast<double>(i)),
+                     escape(f.notes[i]));
 }
 
 // Grid, tick labels, the frame and the axis labels.
@@ -178,8 +240,8 @@ std::string tag_attribute(const Series& s) {
 // Dots are zero-length round-capped subpaths: one path element per series, and a dot that lands
 // in the same half-pixel cell as an earlier one of its series is left out (it would be drawn
 // over it).
-void append_dots(std::string& o, const Plot& p, const Series& s, const Axis& ax, const Axis& ay) {
-  const double W = p.width, H = p.height;
+void append_dots(std::string& o, const Frame& f, const Series& s, const Axis& ax, const Axis& ay) {
+  const double W = f.W, H = f.H;
   const std::size_t n = std::min(s.x.size(), s.y.size());
   o += fmt::format(
       "<path fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linecap=\"round\" "
@@ -235,9 +297,9 @@ void append_line(std::string& o, const Series& s, const Axis& ax, const Axis& ay
 }
 
 // The legend below the x label.
-void append_legend(std::string& o, const Plot& p, const std::vector<LegendItem>& legend,
+void append_legend(std::string& o, const Frame& f, const std::vector<LegendItem>& legend,
                    double legend_rows) {
-  const double H = p.height;
+  const double H = f.H;
   for (const auto& item : legend) {
     const double x = kLeft + item.x, y = H - kLegendRow * (legend_rows - item.y) + 2;
     if (item.series->mark == Mark::Dots)
@@ -358,32 +420,37 @@ std::string standalone_file(const std::string& svg_element) {
 }
 
 std::string render(const Plot& p) {
-  const double W = p.width, H = p.height;
-
-  // Legend layout first: its rows take space below the axes.
+  // Legend layout first: its rows take space below the axes; the title and notes above them.
   const std::vector<LegendItem> legend = legend_layout(p);
   const double legend_rows = legend.empty() ? 0 : legend.back().y + 1;
-  const double top = kTitleLine + kNoteLine * static_cast<double>(p.notes.size()) + 14;
-  const double bottom = kBelowAxis + kLegendRow * legend_rows + 4;
+  Frame f;
+  f.W = p.width;
+  f.title = wrap(p.title, f.W - 8, kTitleCharWidth);
+  for (const auto& note : p.notes)
+    for (auto& l : wrap(note, f.W - 8, kCharWidth)) f.notes.push_back(std::move(l));
+  f.top = kTitleLine + kTitleRow * static_cast<double>(f.title.size() - 1) +
+          kNoteLine * static_cast<double>(f.notes.size()) + 14;
+  f.bottom = kBelowAxis + kLegendRow * legend_rows + 4;
+  f.H = std::max(static_cast<double>(p.height), f.top + kMinAxesHeight + f.bottom);
 
   Axis ax, ay;
   ax.log = p.log_x, ay.log = p.log_y;
-  ax.from = kLeft, ax.to = W - kRight;
-  ay.from = H - bottom, ay.to = top;
+  ax.from = kLeft, ax.to = f.W - kRight;
+  ay.from = f.H - f.bottom, ay.to = f.top;
   set_ranges(p, ax, ay);
 
   std::string o;
   o.reserve(4096);
-  append_header(o, p);
+  append_header(o, p, f);
   append_axes(o, p, ax, ay);
   append_markers(o, p, ax, ay);
   for (const auto& s : p.series) {
     if (s.mark == Mark::Dots)
-      append_dots(o, p, s, ax, ay);
+      append_dots(o, f, s, ax, ay);
     else
       append_line(o, s, ax, ay);
   }
-  append_legend(o, p, legend, legend_rows);
+  append_legend(o, f, legend, legend_rows);
   o += "</svg>";
   return o;
 }

@@ -23,7 +23,7 @@ struct Series {
         y(std::move(y_)) {}
 
   std::string label;  // legend text; empty keeps the series out of the legend
-  std::string color;  // CSS colour, e.g. "#1f77b4"
+  std::string color;  // CSS colour, e.g. "#0072b2" (io/palette.hpp)
   Mark mark = Mark::Dots;
   std::vector<double> x, y;  // a pair that is not finite (or <= 0 on a log axis) is skipped
   // Written as the data-tag attribute of the series' path (when not empty): which group or
@@ -50,11 +50,22 @@ struct Plot {
   std::optional<double> y_reference;                 // dashed horizontal line, e.g. 0
   std::vector<XMarker> x_markers;
   std::vector<Series> series;
-  int width = 720, height = 440;
+  // The size in pixels (the viewBox). The title and notes are wrapped to the width; the height
+  // grows where they and the legend would leave the axes less than 200 px. 440 px wide with
+  // 11 px text: three plots side by side on a 1400 px screen show the text at about 10 px.
+  int width = 440, height = 380;
 };
 
-// The plot as an <svg> element without a namespace attribute (for inline use in HTML).
+// The plot as an <svg> element without a namespace attribute (for inline use in HTML). The
+// element is accessible as an image: role="img", aria-label="description(p)", and a <title>
+// with the plot's title as its first child.
 std::string render(const Plot& p);
+
+// The plot in words, for its aria-label: the title, what is drawn against what (and a log
+// axis), the legend's series and the notes, e.g. "T_x: collapse, T_x / N against eps. T_x / N
+// (parity sign removed) against eps = v/(|omega| R) (log scale). Series: N = 2000, N = 4000.
+// colour: N." Plain text (not escaped).
+std::string description(const Plot& p);
 
 // An <svg> element from render() as a standalone .svg file (XML declaration and namespace).
 std::string standalone_file(const std::string& svg_element);

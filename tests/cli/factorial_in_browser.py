@@ -24,9 +24,19 @@ Checks:
     names exact as preferred, the chi2 column it shows ranks exact first, and it does not claim
     one whitening for every model;
   - both pages show the input's SHA-256 (computed here) and the command line;
-  - at a 390 px wide window neither page is wider than the window (wide tables scroll inside
-    their box): the page's script writes scrollWidth x innerWidth into body[data-widths]; the
-    page is shown in a 390 px iframe, since Chromium's headless window is at least 500 px.
+  - at a 390 px wide window neither page is wider than the window (wide tables and plots scroll
+    inside their box): the page's script writes scrollWidth x innerWidth into body[data-widths];
+    the page is shown in a 390 px iframe, since Chromium's headless window is at least 500 px;
+  - at 390 px the text is readable: the body's font is 14 px or more, and every plot's smallest
+    text is drawn at 9.9 px or more (the page's script writes the size into the figure's
+    data-text-px: the SVG's font size times its drawn width over its viewBox width);
+  - the plots of one kind (collapse, measured and fitted, ...), one per channel, stand side by
+    side at 1400 px: the three channels' figures have the same top and increasing left edges
+    (data-rendered-at, written by the page's script); at 390 px in one column: the same left
+    edge and increasing tops;
+  - report.html's parameter table sorts from its header: each header cell holds a <button>
+    (focusable, so the keyboard reaches it), and a click on the value header's sets the cell's
+    aria-sort to ascending, a second click to descending, and the rows follow.
 Exit 0: passed; 1: failed; 77: skipped (no Chromium). Python standard library only.
 """
 
@@ -90,24 +100,37 @@ def add_noise(model_csv, out_csv, seed=20261126):
 
 
 class Figures(html.parser.HTMLParser):
-    """Per figure (data-file): its paths (attributes) and texts (attributes, text); the page's
-    data-widths and all text."""
+    """Per figure (data-file): its paths (attributes) and texts (attributes, text), the grid it
+    stands in (data-kind of its div.plot-grid) and what the page's script measured; the page's
+    data-widths, data-font-px, the body's data-result (set by a test's outer page) and all
+    text."""
 
     def __init__(self):
         super().__init__()
         self.figures = {}
         self.widths = None
+        self.font_px = None
+        self.result = None
         self.text = ""
         self._file = None
         self._text = None
+        self._divs = []  # per open div: the grid's kind, or None
 
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
-        if tag == "body":
+        if tag == "body" and self.widths is None:
             self.widths = a.get("data-widths")
-        if tag == "figure" and "data-file" in a:
-            self._file = a["data-file"]
-            self.figures[self._file] = {"paths": [], "texts": []}
+            self.font_px = a.get("data-font-px")
+            self.result = a.get("data-result")
+        if tag == "div":
+            grid = "plot-grid" in (a.get("class") or "").split()
+            self._divs.append(a.get("data-kind", "") if grid else None)
+        if tag == "figure" and ("data-file" in a or "data-param" in a):
+            self._file = a.get("data-file") or a["data-param"]
+            kinds = [k for k in self._divs if k is not None]
+            self.figures[self._file] = {
+                "paths": [], "texts": [], "grid": kinds[-1] if kinds else None,
+                "at": a.get("data-rendered-at"), "text_px": a.get("data-text-px")}
         elif self._file and tag == "path":
             self.figures[self._file]["paths"].append(a)
         elif self._file and tag == "text":
@@ -119,6 +142,8 @@ class Figures(html.parser.HTMLParser):
             self._text[1] += data
 
     def handle_endtag(self, tag):
+        if tag == "div" and self._divs:
+            self._divs.pop()
         if tag == "text" and self._text is not None and self._file:
             self.figures[self._file]["texts"].append(tuple(self._text))
             self._text = None
@@ -237,23 +262,143 @@ def traceability_failures(name, parsed, sha256):
     return failures
 
 
-def narrow_widths(browser, tmp, page):
-    """The page's body[data-widths] in a 390 px wide iframe (Chromium's headless window is at
-    least 500 px wide), read by an outer page's script (file access between files allowed)."""
-    outer = os.path.join(tmp, "narrow.html")
+def in_frame(browser, tmp, page, width, script=""):
+    """The page rendered in an iframe `width` px wide (Chromium's headless window is at least
+    500 px wide), as an outer page's script copies it once loaded (file access between files
+    allowed): the inner body's data attributes onto the outer body, and the inner body's DOM
+    (with what the page's script measured) after the iframe. `script` then runs in the outer
+    page with `d`, the inner document, and may set document.body.dataset.result."""
+    outer = os.path.join(tmp, "frame%d.html" % width)
     with open(outer, "w") as f:
         f.write('<!DOCTYPE html><html><body><iframe id="f" src="file://%s" '
-                'style="width:390px;height:1200px;border:0"></iframe><script>'
+                'style="width:%dpx;height:1200px;border:0"></iframe><script>'
                 'const f = document.getElementById("f");'
-                'f.onload = () => { document.body.dataset.widths = '
-                'f.contentDocument.body.dataset.widths; };</script></body></html>' % page)
+                'f.onload = () => { const d = f.contentDocument;'
+                'Object.assign(document.body.dataset, d.body.dataset);'
+                'document.body.insertAdjacentHTML("beforeend", d.body.innerHTML);'
+                '%s };</script></body></html>' % (page, width, script))
     common = CHROMIUM_FLAGS + ["--user-data-dir=" + os.path.join(tmp, "profile"),
-                               "--allow-file-access-from-files", "--window-size=800,1200"]
+                               "--allow-file-access-from-files",
+                               "--window-size=%d,1200" % max(800, width + 100)]
     done = subprocess.run([browser] + common + ["--dump-dom", "file://" + outer],
                           capture_output=True, text=True, timeout=180)
     parsed = Figures()
     parsed.feed(done.stdout)
     return parsed
+
+
+def narrow_widths(browser, tmp, page):
+    """The page in a 390 px wide iframe (in_frame)."""
+    return in_frame(browser, tmp, page, 390)
+
+
+def readable_failures(name, parsed):
+    """At 390 px: a body font of 14 px or more, every plot's text drawn at 9.9 px or more."""
+    failures = []
+    font = float(parsed.font_px or 0)
+    if font < 14:
+        failures.append("%s at 390 px: the body's font is %s px" % (name, parsed.font_px))
+    sizes = {f: fig["text_px"] for f, fig in parsed.figures.items()}
+    small = {f: px for f, px in sizes.items() if px is None or float(px) < 9.9}
+    print("%s at 390 px: body font %s px, plot text %s to %s px" % (
+        name, parsed.font_px, min((float(p) for p in sizes.values() if p), default=None),
+        max((float(p) for p in sizes.values() if p), default=None)))
+    if not sizes:
+        failures.append("%s at 390 px: no plots" % name)
+    for f, px in sorted(small.items()):
+        failures.append("%s at 390 px: the text of %s is drawn at %s px" % (name, f, px))
+    return failures
+
+
+def grids(parsed):
+    """Per grid kind: its figures' (left, top) in page order."""
+    out = {}
+    for fig in parsed.figures.values():
+        if fig["grid"] is None:
+            continue
+        left, _, top = (fig["at"] or "nan,nan").partition(",")
+        out.setdefault(fig["grid"], []).append((float(left), float(top)))
+    return out
+
+
+def layout_failures(name, wide, narrow, per_row=3):
+    """At 1400 px the first `per_row` figures of every grid that has as many are one row (equal
+    tops, increasing left edges); at 390 px every grid is one column (equal left edges,
+    increasing tops)."""
+    failures = []
+    rows = 0
+    for kind, at in grids(wide).items():
+        if len(at) < per_row:
+            continue
+        rows += 1
+        row = at[:per_row]
+        tops = [t for _, t in row]
+        lefts = [l for l, _ in row]
+        if max(tops) - min(tops) > 1 or any(b <= a for a, b in zip(lefts, lefts[1:])):
+            failures.append("%s at 1400 px, %s: figures at %s, not one row" % (name, kind, row))
+    if rows == 0:
+        failures.append("%s at 1400 px: no grid of %d plots" % (name, per_row))
+    for kind, at in grids(narrow).items():
+        lefts = [l for l, _ in at]
+        tops = [t for _, t in at]
+        if max(lefts) - min(lefts) > 1 or any(b <= a for a, b in zip(tops, tops[1:])):
+            failures.append("%s at 390 px, %s: figures at %s, not one column" % (name, kind, at))
+    print("%s: %d grids of %d side by side at 1400 px, one column at 390 px"
+          % (name, rows, per_row))
+    return failures
+
+
+# Presses a header's button twice (the header cell chosen by `cell`, a CSS selector in the inner
+# document), and records the cells' aria-sort, the button's tag and focus, and the rows' order
+# (by `row_key`, an attribute of the body rows) after each press.
+CLICK_SCRIPT = """
+const th = d.querySelector(%(cell)s), button = th && th.querySelector('button');
+const table = th && th.closest('table');
+const order = () => Array.from(table.tBodies[0].rows).map((tr) => tr.getAttribute(%(key)s));
+const others = () => Array.from(table.tHead.rows[0].cells).filter((c) => c !== th)
+    .map((c) => c.getAttribute('aria-sort'));
+const r = {before: th && th.getAttribute('aria-sort'), tag: button ? button.tagName : null};
+if (button) {
+  button.focus();
+  r.focused = d.activeElement === button;
+  r.tabIndex = button.tabIndex;
+  button.click();
+  r.first = th.getAttribute('aria-sort');
+  r.firstOrder = order();
+  r.othersFirst = others();
+  button.click();
+  r.second = th.getAttribute('aria-sort');
+  r.secondOrder = order();
+}
+document.body.dataset.result = JSON.stringify(r);
+"""
+
+
+def click_header(browser, tmp, page, cell, key):
+    """Presses the header button of the cell `cell` twice (CLICK_SCRIPT) at 800 px; returns the
+    record."""
+    script = CLICK_SCRIPT % {"cell": json.dumps(cell), "key": json.dumps(key)}
+    parsed = in_frame(browser, tmp, page, 800, script)
+    return json.loads(parsed.result or "{}")
+
+
+def click_failures(name, r, ascending, descending):
+    """The record of click_header against the rows' expected orders after each press."""
+    failures = []
+    if r.get("tag") != "BUTTON":
+        return ["%s: the header cell holds no button (%s)" % (name, r)]
+    if not r.get("focused") or r.get("tabIndex", -1) < 0:
+        failures.append("%s: the header's button cannot be focused from the keyboard" % name)
+    if (r.get("before"), r.get("first"), r.get("second")) != ("none", "ascending", "descending"):
+        failures.append("%s: aria-sort %s, then %s, then %s; expected none, ascending, "
+                        "descending" % (name, r.get("before"), r.get("first"), r.get("second")))
+    if any(o != "none" for o in r.get("othersFirst", [None])):
+        failures.append("%s: the other headers' aria-sort: %s" % (name, r.get("othersFirst")))
+    if r.get("firstOrder") != ascending or r.get("secondOrder") != descending:
+        failures.append("%s: rows %s then %s; expected %s then %s"
+                        % (name, r.get("firstOrder"), r.get("secondOrder"), ascending, descending))
+    print("%s: a header click sorts %s, again %s" % (name, r.get("first"), r.get("second")))
+    return failures
 
 
 def width_failures(name, parsed):
@@ -292,7 +437,17 @@ def main():
         failures += residual_failures(parsed)
         failures += collapse_failures(parsed)
         failures += traceability_failures("report.html", parsed, sha256)
-        failures += width_failures("report.html", narrow_widths(browser, tmp, page))
+        narrow = narrow_widths(browser, tmp, page)
+        failures += width_failures("report.html", narrow)
+        failures += readable_failures("report.html", narrow)
+        failures += layout_failures("report.html", in_frame(browser, tmp, page, 1400), narrow)
+        with open(os.path.join(report, "report.json")) as f:
+            values = {n: p["value"] for n, p in json.load(f)["parameters"].items()}
+        ascending = sorted(values, key=values.get)
+        failures += click_failures(
+            "report.html, value",
+            click_header(browser, tmp, page, "#parameter-table th:nth-child(2)", "data-param"),
+            ascending, ascending[::-1])
 
         compare = os.path.join(tmp, "compare")
         if not run([args.exe, "compare", data, "--models", "seed,exact", "--pressure", "hertz",
@@ -304,7 +459,10 @@ def main():
         parsed = render(browser, tmp, page)
         failures += compare_failures(parsed, compare_json)
         failures += traceability_failures("compare.html", parsed, sha256)
-        failures += width_failures("compare.html", narrow_widths(browser, tmp, page))
+        narrow = narrow_widths(browser, tmp, page)
+        failures += width_failures("compare.html", narrow)
+        failures += readable_failures("compare.html", narrow)
+        failures += layout_failures("compare.html", in_frame(browser, tmp, page, 1400), narrow)
     for f in failures:
         print("FAILED: " + f)
     return 1 if failures else 0

@@ -12,9 +12,13 @@ Checks:
   - every label link names a report file that exists;
   - no http(s) URL anywhere in the page or its DOM;
   - the screenshot is not blank;
-  - at a 390 px window the page is no wider than the window (factorial_in_browser.py's check);
+  - at a 390 px window the page is no wider than the window, its text is readable and the trend
+    plots stand in one column; at 1400 px three side by side (factorial_in_browser.py's checks);
   - sorting works: opened as summary.html#sort=-load the rows are in descending load, and as
-    #sort=f in ascending f with the failed run (no f) last.
+    #sort=f in ascending f with the failed run (no f) last;
+  - the headers are buttons: a click on f's sets its cell's aria-sort to ascending (the rows in
+    ascending f, the failed run last), a second to descending (the failed run still last); the
+    other headers' aria-sort stays none, and the button takes the keyboard's focus.
 Exit 0: passed; 1: failed; 77: skipped (Chromium not installed; ctest's SKIP_RETURN_CODE).
 Python standard library only; the Chromium helpers are report_in_browser.py's.
 """
@@ -29,7 +33,9 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_in_browser import CHROMIUM_FLAGS, WINDOW, chromium, png_grey_levels, run  # noqa: E402
-from factorial_in_browser import narrow_widths, width_failures  # noqa: E402
+from factorial_in_browser import (click_failures, click_header, in_frame,  # noqa: E402
+                                  layout_failures, narrow_widths, readable_failures,
+                                  width_failures)
 
 LOADS = (1000, 2000, 3000)
 
@@ -187,8 +193,12 @@ def main():
                 if scheme in text:
                     failures.append("the %s holds a %s URL" % (where, scheme))
 
-        # At a 390 px window the page is no wider than the window (the table scrolls in its box).
-        failures += width_failures("summary.html", narrow_widths(browser, tmp, page))
+        # At a 390 px window the page is no wider than the window (the table scrolls in its box),
+        # its text is readable and the plots stand in one column; at 1400 px, three in a row.
+        narrow = narrow_widths(browser, tmp, page)
+        failures += width_failures("summary.html", narrow)
+        failures += readable_failures("summary.html", narrow)
+        failures += layout_failures("summary.html", in_frame(browser, tmp, page, 1400), narrow)
 
         if not os.path.exists(shot):
             failures.append("no screenshot")
@@ -214,6 +224,11 @@ def main():
         _, sorted_page = render(browser, tmp, "file://" + page + "#sort=f")
         if sorted_page.order != by_f + ["broken"]:
             failures.append("#sort=f: rows %s, expected %s" % (sorted_page.order, by_f + ["broken"]))
+        # A click on f's header button, and a second one.
+        failures += click_failures(
+            "summary.html, f",
+            click_header(browser, tmp, page, 'th[data-key="f"]', "data-label"),
+            by_f + ["broken"], by_f[::-1] + ["broken"])
         print("summary.html: %d runs, %d plots" % (len(parsed.rows), len(parsed.figures)))
     for f in failures:
         print("FAILED: " + f)

@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -180,14 +181,15 @@ TEST(ReportHtml, ColourByATextColumnGivesOneColourPerValue) {
   EXPECT_EQ(html.find(">N = 100</text>"), std::string::npos);
 }
 
-TEST(ReportHtml, ManyValuesAreColouredInEightRangesCoveringThemAll) {
+// One range per colour of the palette: seven, Okabe and Ito's colours without black.
+TEST(ReportHtml, ManyValuesAreColouredInSevenRangesCoveringThemAll) {
   const Dataset d = make_dataset();  // slip_angle takes 20 values, 0 to 9.5
   ReportOptions o;
   o.color_by = "slip_angle";
   const std::string html = report_html(make_result(d), d, o);
   const auto fig = html.find("data-file=\"collapse_T_x.svg\"");
   const std::string plot = html.substr(fig, html.find("</figure>", fig) - fig);
-  EXPECT_EQ(count(plot, ">slip_angle in ["), 8u);
+  EXPECT_EQ(count(plot, ">slip_angle in ["), 7u);
   EXPECT_NE(plot.find(">slip_angle in [0, "), std::string::npos);
   EXPECT_NE(plot.find(", 9.5]</text>"), std::string::npos);
 }
@@ -227,6 +229,79 @@ TEST(ReportHtml, SameInputGivesTheSameBytesAndNoNanText) {
   for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   EXPECT_EQ(lower.find(">nan<"), std::string::npos);
   EXPECT_EQ(lower.find("\"nan\""), std::string::npos);
+}
+
+// The cells of one parameter's row in report.html, in order (their text).
+std::vector<std::string> row_cells(const std::string& html, const std::string& name) {
+  const auto row = html.find("<tr data-param=\"" + name + "\">");
+  if (row == std::string::npos) return {};
+  const std::string tr = html.substr(row, html.find("</tr>", row) - row);
+  std::vector<std::string> cells;
+  for (auto at = tr.find("<td"); at != std::string::npos; at = tr.find("<td", at + 1)) {
+    const auto begin = tr.find('>', at) + 1;
+    cells.push_back(tr.substr(begin, tr.find("</td>", begin) - begin));
+  }
+  return cells;
+}
+
+// Under the default interval method a parameter nearly collinear with another one (it has a
+// profile interval) shows the profile interval and says so; the others show the symmetric
+// model interval and say that. Both pages name each row's method.
+TEST(ReportHtml, EachParameterRowNamesItsIntervalMethod) {
+  const Dataset d = make_dataset();
+  FitResult r = make_result(d);
+  ParameterEstimate b;
+  b.name = "b";
+  b.value = 22.0;
+  b.std_error = 2.5;
+  b.ci95 = std::array<double, 2>{17.0, 27.0};
+  b.ci95_profile = std::array<double, 2>{17.6, 27.9};
+  b.lower = 0;
+  b.upper = 100;
+  ParameterEstimate m = b;
+  m.name = "m";
+  m.value = 7.1;
+  m.std_error = 0.4;
+  m.ci95 = std::array<double, 2>{6.3, 7.9};
+  m.ci95_profile = std::array<double, 2>{6.4, 8.1};
+  m.profile_closed = {true, false};
+  r.parameters.push_back(b);
+  r.parameters.push_back(m);
+  const std::string html = report_html(r, d);
+  // name, value, stderr, low, high, method, ...
+  const auto f = row_cells(html, "f"), bc = row_cells(html, "b"), mc = row_cells(html, "m");
+  const auto kappa = row_cells(html, "kappa");
+  ASSERT_GT(f.size(), 5u);
+  ASSERT_GT(bc.size(), 5u);
+  ASSERT_GT(mc.size(), 5u);
+  ASSERT_GT(kappa.size(), 5u);
+  EXPECT_EQ(f[5], "model (t·stderr)");
+  EXPECT_EQ(f[3], "0.4974");
+  EXPECT_EQ(bc[5], "profile");
+  // The profile's ends, 17.6 and 27.9, to 2 significant digits of the width (the model
+  // interval's would read 17 and 27).
+  EXPECT_EQ(bc[3], "18");
+  EXPECT_EQ(bc[4], "28");
+  EXPECT_EQ(mc[5], "profile, open above (ends at the bound)");
+  EXPECT_EQ(kappa[5], "—");  // fixed: no interval
+  EXPECT_NE(html.find("<th>interval method</th>"), std::string::npos);
+
+  const std::string md = report_markdown(r);
+  EXPECT_NE(md.find("| note | 95% CI method |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| b | 22.0 ± 2.5 | [18, 28] |"), std::string::npos) << md;
+  const auto line_of = [&md](const std::string& start) {
+    const auto at = md.find(start);
+    return at == std::string::npos ? std::string() : md.substr(at, md.find('\n', at) - at);
+  };
+  const std::string f_line = line_of("| f |"), b_line = line_of("| b |");
+  EXPECT_EQ(f_line.substr(f_line.rfind("| ", f_line.size() - 3)), "| model (t·stderr) |");
+  EXPECT_EQ(b_line.substr(b_line.rfind("| ", b_line.size() - 3)), "| profile |");
+
+  // With --intervals sandwich every row says so, whatever was profiled.
+  r.intervals = IntervalMethod::Sandwich;
+  r.parameters[0].ci95_sandwich = std::array<double, 2>{0.497, 0.503};
+  EXPECT_EQ(row_cells(report_html(r, d), "f")[5], "HC3 (t·sandwich stderr)");
+  EXPECT_EQ(row_cells(report_html(r, d), "b")[5], "—");
 }
 
 }  // namespace
