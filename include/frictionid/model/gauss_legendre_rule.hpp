@@ -36,6 +36,18 @@ inline std::vector<QuadratureNode> make_gauss_legendre_rule(int n) {
   return nodes;
 }
 
+// Gauss–Legendre in t with u = sin^2(pi t/2) on [0, 1]: sqrt(u) and sqrt(1 - u) become sin and
+// cos, so integrands with square-root (or u^(k+1/2)) ends turn analytic.
+inline std::vector<QuadratureNode> make_sine_squared_rule(int points) {
+  std::vector<QuadratureNode> out;
+  for (const QuadratureNode& g : make_gauss_legendre_rule(points)) {
+    const double a = std::sin(0.5 * M_PI * g.from_left);
+    const double b = std::sin(0.5 * M_PI * g.from_right);
+    out.push_back({a * a, b * b, g.weight * M_PI * a * b});
+  }
+  return out;
+}
+
 inline const std::vector<QuadratureNode>& smooth_piece_rule() {
   static const std::vector<QuadratureNode> rule = make_gauss_legendre_rule(16);
   return rule;

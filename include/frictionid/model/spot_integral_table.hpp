@@ -113,8 +113,11 @@ namespace frictionid::model {
 // density).
 class RectStripIntegrator {
  public:
+  // A table cut at every sample is a cubic between two of them (see SpotIntegrator): 16
+  // Gauss–Legendre points take such a piece off the rim and at least half its length from c_x.
   RectStripIntegrator(const PressureLaw<double>& law, double q) : law_(law), q_(q) {
     std::vector<double> kept = law_.breakpoints();
+    cubic_pieces_ = law_.kind == PressureKind::Table && kept.size() <= SpotIntegrator::kMaxBreaks;
     if (kept.size() > SpotIntegrator::kMaxBreaks) kept = law_.steps();
     for (double b : kept)
       if (b > 0.0 && b < 1.0) breaks_.push_back(b);
@@ -136,7 +139,9 @@ class RectStripIntegrator {
     double acc[12] = {};
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       const double lo = cuts[k], hi = cuts[k + 1], len = hi - lo;
-      for (const QuadratureNode& node : fine_rule()) {
+      const bool cubic =
+          cubic_pieces_ && lo != -1.0 && hi != 1.0 && std::max(lo - cx, cx - hi) >= 0.5 * len;
+      for (const QuadratureNode& node : cubic ? smooth_piece_rule() : fine_rule()) {
         const double x = lo + len * node.from_left;
         // a = x - c_x and 1 - |x| to full precision next to the cut and the rim.
         const double a = lo == cx   ? len * node.from_left
@@ -209,6 +214,7 @@ class RectStripIntegrator {
 
   PressureLaw<double> law_;
   double q_;
+  bool cubic_pieces_ = false;  // a table cut at every sample
   std::vector<double> breaks_;
 };
 
@@ -394,15 +400,7 @@ class SpotIntegralTable {
   // integrand with a square-root end turns analytic. 28 points keep the integrals within 1e-11 of
   // A0 where tanh-sinh takes 51.
   static const std::vector<QuadratureNode>& sine_squared_rule() {
-    static const std::vector<QuadratureNode> rule = [] {
-      std::vector<QuadratureNode> out;
-      for (const QuadratureNode& g : make_gauss_legendre_rule(kSineSquaredPoints)) {
-        const double a = std::sin(0.5 * M_PI * g.from_left);
-        const double b = std::sin(0.5 * M_PI * g.from_right);
-        out.push_back({a * a, b * b, g.weight * M_PI * a * b});
-      }
-      return out;
-    }();
+    static const std::vector<QuadratureNode> rule = make_sine_squared_rule(kSineSquaredPoints);
     return rule;
   }
 
