@@ -10,7 +10,9 @@
 // 20 and 8 rows, eps only above 1.5 (nearly collinear kappa, b, m) and two noise-free channels;
 // each fit also asks for the profile intervals of every parameter (--intervals profile), which
 // leaves the estimate, ci95 and the HC3 interval as the default fit has them (the profile runs
-// after the fit), and marks the parameters the default profiles anyway (|r| > 0.99).
+// after the fit), and marks the parameters the default profiles anyway (|r| > 0.99). The
+// designs with few rows are also fitted with the true sigma columns and with the noise model of
+// the generating form, to tell the noise estimate's share of a shortfall.
 // summarize.py turns the lines into tables and a plot.
 //
 //   coverage_study [--replicates N] [--replicates-exact N] [--baseline-replicates N]
@@ -74,16 +76,19 @@ struct DesignSpec {
   std::size_t rows = 600;
   double eps_min = 1e-2;
   std::array<bool, kChannelCount> noise_free{};  // channels left without noise
+  // Also fitted with the true sigma in sigma columns and with the noise model of the form that
+  // generated the noise (relative or additive): is a shortfall the noise estimate's?
+  bool variants = false;
 };
 const DesignSpec kDesigns[] = {
     {"default", "", 0},
     // Additive noise with very different floor and proportional parts per channel.
     {"rows600", "additive", 600},
-    {"rows60", "additive", 60},
+    {"rows60", "additive", 60, 1e-2, {}, true},
     // Small samples (docs/physics.md section 8.10: below k + 2 rows per channel one sigma
     // pooled over all cells; below 20 only constant or relative per channel).
-    {"rows20", "relative", 20},
-    {"rows8", "relative", 8},
+    {"rows20", "relative", 20, 1e-2, {}, true},
+    {"rows8", "relative", 8, 1e-2, {}, true},
     // eps only in 1.5-100: kappa, b and m nearly collinear (the default profiles them).
     {"eps1.5", "relative", 600, 1.5},
     // T_x and M_z noise-free (the default floors their sigma at 1e-6 of the RMS, with a
@@ -258,14 +263,24 @@ int main(int argc, char** argv) {
         cells.push_back({k, 0, models[m], false, NoiseModelKind::Auto, interval_replicates, true,
                          bootstrap_resamples});
   // Design cells: default noise model, no sigma columns, every model; with the profile interval
-  // of every parameter (--design-intervals profile) or as the default fit (model).
+  // of every parameter (--design-intervals profile) or as the default fit (model). The designs
+  // with variants also with the true sigma columns and with the generating noise form.
   if ((which == "all" || which == "designs") && design_replicates > 0)
     for (int d = 1; d < kDesignCount; ++d)
       if (listed(designs, kDesigns[d].name))
-        for (int m = 0; m < 3; ++m)
-          cells.push_back({condition_index(kDesigns[d].condition), d, models[m], false,
-                           NoiseModelKind::Auto, design_replicates, design_intervals == "profile",
-                           0});
+        for (int m = 0; m < 3; ++m) {
+          const int k = condition_index(kDesigns[d].condition);
+          const bool profile = design_intervals == "profile";
+          cells.push_back(
+              {k, d, models[m], false, NoiseModelKind::Auto, design_replicates, profile, 0});
+          if (!kDesigns[d].variants) continue;
+          cells.push_back(
+              {k, d, models[m], true, NoiseModelKind::Auto, design_replicates, profile, 0});
+          cells.push_back(
+              {k, d, models[m], false,
+               kConditions[k].additive ? NoiseModelKind::Additive : NoiseModelKind::Relative,
+               design_replicates, profile, 0});
+        }
   std::vector<Task> tasks;
   for (int c = 0; c < static_cast<int>(cells.size()); ++c)
     for (int r = 1; r <= cells[c].replicates; ++r) tasks.push_back({c, r});
