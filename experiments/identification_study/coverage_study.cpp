@@ -121,6 +121,27 @@ struct Task {
   int replicate = 0;
 };
 
+// A warning's kind (docs/physics.md section 8.9) from a phrase of its text; "other" otherwise.
+std::string warning_kind(const std::string& w) {
+  static const std::pair<const char*, const char*> kinds[] = {
+      {"HC3 sandwich", "sandwich"},
+      {"pressure implies", "law"},
+      {"strongly correlated", "correlation"},
+      {"at rounding level", "noise-free"},
+      {"beyond 6 sigma", "outliers"},
+      {"structure against eps", "runs"},
+      {"the fit explains", "low-R2"},
+      {"not determined by the data", "not-determined"},
+      {"poorly determined", "poorly-determined"},
+      {"grow with the measured magnitude", "grows-with-signal"},
+      {"noise estimate of", "noise-estimate"},
+      {"did not converge", "not-converged"},
+  };
+  for (const auto& [phrase, kind] : kinds)
+    if (w.find(phrase) != std::string::npos) return kind;
+  return "other";
+}
+
 std::uint64_t noise_seed(int condition, ModelKind model, int replicate) {
   return 20261123ULL + 1000003ULL * static_cast<std::uint64_t>(condition) +
          100000007ULL * static_cast<std::uint64_t>(static_cast<int>(model)) +
@@ -297,7 +318,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   out << "noise,design,model,columns,noise_model,methods,replicate,status,seconds,dof,chosen,"
-         "warnings,floored,parameter,correlated,truth,value,stderr,ci_lo,ci_hi,stderr_sandwich,"
+         "warnings,floored,warning_kinds,parameter,correlated,truth,value,stderr,ci_lo,ci_hi,"
+         "stderr_sandwich,"
          "hc3_lo,hc3_hi,profile_lo,profile_hi,profile_closed,stderr_bootstrap,bootstrap_lo,"
          "bootstrap_hi,bootstrap_refits\n";
   for (int k = 0; k < kConditionCount; ++k)
@@ -354,8 +376,11 @@ int main(int argc, char** argv) {
         // Noise-free channels named by the warning that floors their sigma (docs/physics.md
         // section 8.10).
         int floored = 0;
-        for (const auto& w : r.warnings)
+        std::string kinds;  // the fit's warnings by kind, ';'-separated, in order
+        for (const auto& w : r.warnings) {
           floored += w.find("at rounding level") != std::string::npos;
+          kinds += (kinds.empty() ? "" : ";") + warning_kind(w);
+        }
         // The parameters whose profile interval the default computes too: |r| > 0.99 to another.
         auto correlated = [&](const std::string& name) {
           const auto& names = r.correlation_names;
@@ -370,7 +395,7 @@ int main(int argc, char** argv) {
           if (p.fixed) continue;
           const int pi = *param_index(p.name);
           line << head << "," << status << "," << secs << "," << r.dof << "," << chosen << ","
-               << r.warnings.size() << "," << floored << "," << p.name << ","
+               << r.warnings.size() << "," << floored << "," << kinds << "," << p.name << ","
                << (correlated(p.name) ? 1 : 0) << "," << truth[pi] << "," << p.value << ",";
           if (p.std_error && p.ci95)
             line << *p.std_error << "," << (*p.ci95)[0] << "," << (*p.ci95)[1] << ",";
@@ -395,7 +420,7 @@ int main(int argc, char** argv) {
       } catch (const std::exception& e) {
         const double secs =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - f0).count();
-        line << head << ",failed," << secs << ",,,,,,,,,,,,,,,,,,,,,\n";
+        line << head << ",failed," << secs << ",,,,,,,,,,,,,,,,,,,,,,\n";
       }
       const std::size_t n = ++done;
       std::lock_guard<std::mutex> lock(mu);

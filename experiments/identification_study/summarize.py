@@ -191,6 +191,17 @@ def chosen_counts(key):
     return {c: sorted(v.items(), key=lambda kv: -kv[1]) for c, v in per_channel.items()}, n
 
 
+def warning_shares(key):
+    """The share of the cell's fits with a warning of each kind (coverage_study's warning_kinds)."""
+    counts, n = defaultdict(int), 0
+    for rep in fits[key].values():
+        r = next(iter(rep.values()))
+        n += 1
+        for kind in set(filter(None, r.get("warning_kinds", "").split(";"))):
+            counts[kind] += 1
+    return sorted(((k, c / n) for k, c in counts.items()), key=lambda kv: -kv[1])
+
+
 allrows = []
 for design in ["default"] + list(DESIGNS):
     for noise in NOISES:
@@ -429,10 +440,13 @@ elif dcells:
     L += ["", "Per cell: range of the stated interval's coverage over the parameters (and of HC3 and the "
           "profile), median dof, share of fits with the noise-free warning, with any warning, median fit "
           "time (one thread, two fits at a time; with the profile of every parameter where it was asked), "
+          "the warnings by kind (share of fits; `sandwich`: model-based and HC3 standard errors differ, "
+          "`law`: a, b or m differs from the pressure law, `correlation`: |r| > 0.99, `noise-free`: a "
+          "channel at rounding level, σ floored; see docs/physics.md §8.9) "
           "and the noise model chosen per channel (most frequent; `fixed`: the fixed scales of §8.2 "
           "with one σ pooled over all cells, the fallback below k + 2 rows per channel).", "",
-          "| design | model | fits | stated | HC3 | profile | dof | noise-free warning | any warning | fit [s] | T_x | T_y | M_z | M_roll |",
-          "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|"]
+          "| design | model | fits | stated | HC3 | profile | dof | noise-free warning | any warning | warnings by kind | fit [s] | T_x | T_y | M_z | M_roll |",
+          "|---|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---|---|---|---|"]
     rng = lambda xs: f"{100 * min(xs):.1f}–{100 * max(xs):.1f} %" if xs and all(x == x for x in xs) else "–"
     for d, model in dcells:
         rs = [numeric(r) for (dd, mm, _), r in by_design.items() if (dd, mm) == (d, model)]
@@ -441,13 +455,14 @@ elif dcells:
         if key is not None:
             counts, n = chosen_counts(key)
             chosen = [", ".join(f"{m} {100 * c / n:.0f} %" for m, c in counts[ch][:2]) for ch in counts]
+            kinds = ", ".join(f"{k} {100 * x:.1f} %" for k, x in warning_shares(key)) or "–"
         else:
-            chosen = ["–"] * 4
+            chosen, kinds = ["–"] * 4, "–"
         r0 = rs[0]
         L.append(f"| {DESIGNS[d]} | {model} | {r0['fits']:.0f} | {rng([r['coverage_shown'] for r in rs])} | "
                  f"{rng([r['coverage_hc3'] for r in rs])} | "
                  f"{rng([r['coverage_profile'] for r in rs]) if r0['intervals_profile'] == r0['fits'] else '–'} | "
-                 f"{r0['median_dof']:.0f} | {100 * r0['share_floor_warning']:.1f} % | {100 * r0['share_any_warning']:.1f} % | "
+                 f"{r0['median_dof']:.0f} | {100 * r0['share_floor_warning']:.1f} % | {100 * r0['share_any_warning']:.1f} % | {kinds} | "
                  f"{r0['median_fit_s']:.3f} | " + " | ".join(chosen) + " |")
     vcells = [(d, model) for d, model in dcells
               if any(k[:3] == (d, model, "yes") for k in by_variant)]
