@@ -295,11 +295,11 @@ else:
                 if a is None or c is None:
                     continue
                 # RMSE of auto on the same replicates as the baseline, for a paired ratio.
-                reps = [i for i in fits[(noise, model, "no", "constant", "default")] if p in fits[(noise, model, "no", "constant", "default")][i]
-                        and i in fits[(noise, model, "no", "auto", "default")] and p in fits[(noise, model, "no", "auto", "default")][i]]
+                reps = [i for i in fits[(noise, model, "no", "constant", "default", "default")] if p in fits[(noise, model, "no", "constant", "default", "default")][i]
+                        and i in fits[(noise, model, "no", "auto", "default", "default")] and p in fits[(noise, model, "no", "auto", "default", "default")][i]]
                 t = a["truth"]
-                ra = math.sqrt(statistics.fmean([(float(fits[(noise, model, "no", "auto", "default")][i][p]["value"]) - t) ** 2 for i in reps]))
-                rc = math.sqrt(statistics.fmean([(float(fits[(noise, model, "no", "constant", "default")][i][p]["value"]) - t) ** 2 for i in reps]))
+                ra = math.sqrt(statistics.fmean([(float(fits[(noise, model, "no", "auto", "default", "default")][i][p]["value"]) - t) ** 2 for i in reps]))
+                rc = math.sqrt(statistics.fmean([(float(fits[(noise, model, "no", "constant", "default", "default")][i][p]["value"]) - t) ** 2 for i in reps]))
                 if ra > rc * 1.005:  # worse by more than 0.5 %
                     worse.append((noise, model, p, ra / rc))
                 L.append(f"| {noise} | {model} | {sym(p)} | {100 * ra / abs(t):.3f} % | {100 * rc / abs(t):.3f} % | "
@@ -312,7 +312,7 @@ else:
           "| noise | model | fits | T_x | T_y | M_z | M_roll |", "|---|---|---:|---:|---:|---:|---:|"]
     for noise in NOISES:
         for model in MODELS:
-            key = (noise, model, "no", "auto", "default")
+            key = (noise, model, "no", "auto", "default", "default")
             if not fits[key]:
                 continue
             share, n = chosen_share(key)
