@@ -15,12 +15,12 @@
 #     bounds box only, 3000 and 500 evaluations; writes results_global.csv and results_global.md.
 # See the "Identification study" section of experiments/README.md.
 #
-#   experiments/identification_study/run.sh                  # ~35 min on 2 shared cores
+#   experiments/identification_study/run.sh                  # ~45 min on 2 shared cores
 #   N=100 NE=50 NB=50 NI=50 experiments/identification_study/run.sh # a quick smaller run
 #   CELLS=intervals experiments/identification_study/run.sh  # only the interval cells (~15 min),
 #       merged into the existing results.md/csv/svg; the other cells' numbers are kept as they are
-#   CELLS=designs experiments/identification_study/run.sh    # only the design cells, merged
-#       the same way (DESIGNS=rows8,rows20 for some of them)
+#   CELLS=designs ND=1000 experiments/identification_study/run.sh  # only the design cells
+#       (~20 min), merged the same way (DESIGNS=rows8,rows20 for some of them)
 #
 # Builds the driver in $BUILD_DIR (default build-study, Release, benchmarks on); scratch to out/.
 set -euo pipefail
