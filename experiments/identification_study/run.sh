@@ -7,15 +7,20 @@
 #     sigma per row); per fit the model-based ci95 and the HC3 sandwich interval; the baseline
 #     --noise-model constant on the same datasets; interval cells (relative and affine noise,
 #     every model, no sigma columns, NI replicates) that also compute the profile interval and
-#     a wild bootstrap of NBOOT resamples. Writes results.md, results.csv, coverage.svg.
+#     a wild bootstrap of NBOOT resamples; design cells (ND replicates each, every model, default
+#     noise model, no sigma columns): additive noise on 600 and 60 rows, 20 and 8 rows, eps only in
+#     1.5-100, T_x and M_z noise-free, each fit also with the profile interval of every parameter.
+#     Writes results.md, results.csv, coverage.svg.
 #  B. (GLOBAL=1 only) Global stage: T random truths, noise-free data, `frictionid fit` with the
 #     bounds box only, 3000 and 500 evaluations; writes results_global.csv and results_global.md.
 # See the "Identification study" section of experiments/README.md.
 #
-#   experiments/identification_study/run.sh                  # ~35 min on 2 shared cores
+#   experiments/identification_study/run.sh                  # ~45 min on 2 shared cores
 #   N=100 NE=50 NB=50 NI=50 experiments/identification_study/run.sh # a quick smaller run
 #   CELLS=intervals experiments/identification_study/run.sh  # only the interval cells (~15 min),
-#       merged into the existing results.md/csv/svg; the default cells' numbers are kept as they are
+#       merged into the existing results.md/csv/svg; the other cells' numbers are kept as they are
+#   CELLS=designs ND=1000 experiments/identification_study/run.sh  # only the design cells
+#       (~20 min), merged the same way (DESIGNS=rows8,rows20 for some of them)
 #
 # Builds the driver in $BUILD_DIR (default build-study, Release, benchmarks on); scratch to out/.
 set -euo pipefail
@@ -29,7 +34,10 @@ NE="${NE:-500}"        # ... exact model
 NB="${NB:-500}"        # replicates of the constant-noise baseline per cell (no sigma columns)
 NI="${NI:-400}"        # replicates per interval cell (profile and bootstrap)
 NBOOT="${NBOOT:-199}"  # wild-bootstrap resamples per fit in the interval cells
-CELLS="${CELLS:-all}"  # all, or intervals (merge the interval cells into the existing results)
+ND="${ND:-500}"        # replicates per design cell
+DESIGNS="${DESIGNS:-}" # design cells to run (rows600,rows60,rows20,rows8,eps1.5,noisefree); empty: all
+DI="${DI:-profile}"    # the design cells' --intervals: profile (every parameter) or model
+CELLS="${CELLS:-all}"  # all, or intervals or designs (merge those cells into the existing results)
 ROWS="${ROWS:-600}"    # rows of generate's default design
 JOBS="${JOBS:-2}"      # fits in parallel
 BUILD_DIR="${BUILD_DIR:-$root/build-study}"
@@ -47,13 +55,14 @@ cp "$BUILD_DIR/experiments/coverage_study" "$out/coverage_study"
 commit="$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
 case "$CELLS" in
   all) merge=() ;;
-  intervals) merge=(--merge) ;;
-  *) echo "run.sh: CELLS must be all or intervals, not $CELLS" >&2; exit 2 ;;
+  intervals|designs) merge=(--merge "$CELLS") ;;
+  *) echo "run.sh: CELLS must be all, intervals or designs, not $CELLS" >&2; exit 2 ;;
 esac
-echo "run.sh: coverage study ($CELLS cells), N=$N NE=$NE NB=$NB NI=$NI NBOOT=$NBOOT ROWS=$ROWS on $JOBS jobs ..." >&2
+echo "run.sh: coverage study ($CELLS cells), N=$N NE=$NE NB=$NB NI=$NI NBOOT=$NBOOT ND=$ND ROWS=$ROWS on $JOBS jobs ..." >&2
 start=$(date +%s.%N)
 "$out/coverage_study" --cells "$CELLS" --replicates "$N" --replicates-exact "$NE" \
   --baseline-replicates "$NB" --interval-replicates "$NI" --bootstrap-resamples "$NBOOT" \
+  --design-replicates "$ND" --designs "$DESIGNS" --design-intervals "$DI" \
   --rows "$ROWS" --jobs "$JOBS" --output "$out/coverage_fits.csv" 2> "$out/coverage_study.log"
 wall=$(echo "$(date +%s.%N) - $start" | bc)
 settings="$ROWS rows of the default design, Hertz pressure, truth f = 0.9, κ = 1.15, h = 0.08 \
@@ -61,7 +70,13 @@ settings="$ROWS rows of the default design, Hertz pressure, truth f = 0.9, κ = 
 starts) with one thread per fit, $JOBS fits in parallel on $(nproc) CPUs"
 if [[ "$CELLS" = all ]]; then
   note="coverage_study at commit $commit; $settings; $N replicates per cell (exact model: $NE), \
-baseline $NB; interval cells $NI replicates, bootstrap $NBOOT resamples."
+baseline $NB; interval cells $NI replicates, bootstrap $NBOOT resamples; design cells $ND replicates, \
+--intervals $DI."
+elif [[ "$CELLS" = designs ]]; then
+  note="Design cells: coverage_study --cells designs${DESIGNS:+ --designs $DESIGNS} at commit $commit; \
+default fit settings (global stage crs2 3000 evaluations, 4 starts) with one thread per fit, $JOBS \
+fits in parallel on $(nproc) CPUs; Hertz pressure, truth f = 0.9, κ = 1.15, h = 0.08 (a, b, m, b̃, \
+p0 of the Hertz law); $ND replicates per cell, --intervals $DI."
 else
   note="Interval cells: coverage_study --cells intervals at commit $commit; $settings; $NI \
 replicates per cell, --intervals profile --bootstrap $NBOOT (wild bootstrap seed: the fit's \

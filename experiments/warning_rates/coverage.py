@@ -9,6 +9,12 @@ report.json (ci95, ci95_profile, ci95_sandwich, or ci95_auto: the profile interv
 computed, else ci95; default ci95) contains the truth (and, for another KEY, ci95 too), and how often
 the parameter had none. With NOISE_FREE=T_x,M_z in the environment those channels are replaced
 by their noise-free values (a second generate with --noise 0).
+
+This is the check through the CLI and report.json, a few hundred fits at a time. The same
+conditions (few rows, eps only above 1.5, noise-free channels, additive noise) are measured
+in-process at 1000 replicates per cell, with noise that differs per channel, by the design cells
+of experiments/identification_study (run.sh with CELLS=designs; its "stated" interval is
+ci95_auto here).
 """
 import collections
 import concurrent.futures
