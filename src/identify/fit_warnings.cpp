@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <set>
 #include <string>
@@ -563,6 +564,17 @@ void add_fit_warnings(const LocalProblem& lp, const ParamVector& x,
         "undefined (null). Fit more rows or hold parameters fixed");
   warn_zero_and_growing_channels(*lp.rows.data, res);
   warn_noise_estimates(res);
+  if (res.dof > 0 && noise_pooled(lp, res)) {
+    std::size_t fewest = SIZE_MAX;
+    for (const auto& cs : res.channel_summaries) fewest = std::min(fewest, cs.rows);
+    res.warnings.push_back(
+        "too few rows to estimate each channel's noise (" + std::to_string(fewest) +
+        " in a channel, for " + std::to_string(lp.free.size()) +
+        " free parameters; more than k + 2 are needed): one sigma is pooled over the channels' "
+        "scales (their median magnitudes), so the standard errors hold only if the noise is "
+        "proportional to those scales; with noise that differs between channels they were off "
+        "by up to 3x (docs/physics.md section 8.10). Give sigma columns, or fit more rows");
+  }
   warn_noise_free_channels(*lp.rows.data, res);
   warn_outliers(lp, res);
   warn_unexplained_channels(res);

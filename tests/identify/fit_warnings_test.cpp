@@ -242,6 +242,8 @@ TEST(ClosedFormWarnings, AreNotTestedWhereTheNoiseIsPooledOverTooFewRows) {
       for (double& v : d.value[c]) v *= 1.0 + relative[c] * normal(rng);
     const FitResult r = Fitter(s).fit(d);
     law_warnings += has_warning(r, "that the hertz pressure implies");
+    EXPECT_TRUE(has_warning(r, "too few rows to estimate each channel's noise (8 in a channel"))
+        << all_warnings(r);
   }
   EXPECT_EQ(law_warnings, 0);
 }
