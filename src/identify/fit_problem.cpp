@@ -131,23 +131,21 @@ ChannelSummary channel_summary(const Dataset& data, Channel c, std::vector<doubl
 LocalProblem make_fit_problem(const Dataset& data, const FitSettings& s, FitResult& res) {
   std::vector<Channel> constant, weightless;
   res.channels = fitted_channels(data, s, res.warnings, constant, weightless);
-  if (res.channels.empty() && !weightless.empty()) {
-    std::string names;
-    for (Channel c : weightless)
-      names += (names.empty() ? "" : ", ") + std::string(channel_name(c));
-    throw std::invalid_argument("the sigma columns of " + names +
+  const auto names = [](const std::vector<Channel>& cs) {
+    std::string out;
+    for (Channel c : cs) out += (out.empty() ? "" : ", ") + std::string(channel_name(c));
+    return out;
+  };
+  if (res.channels.empty() && !weightless.empty())
+    throw std::invalid_argument("the sigma columns of " + names(weightless) +
                                 " give every row zero weight (sigma above about 1e154): no "
                                 "channel is left to fit");
-  }
-  if (res.channels.empty() && !constant.empty()) {
-    std::string names;
-    for (Channel c : constant) names += (names.empty() ? "" : ", ") + std::string(channel_name(c));
+  if (res.channels.empty() && !constant.empty())
     throw std::invalid_argument(
-        "every measured value of " + names +
+        "every measured value of " + names(constant) +
         " is the same in every row: a constant channel says nothing about its noise, so with an "
         "estimated noise model there is nothing to fit; give sigma columns (--noise-model "
         "columns) or measurements that vary");
-  }
   if (res.channels.empty())
     throw std::invalid_argument("no requested channel is measured by any row");
   if (s.noise_model == NoiseModelKind::Columns)

@@ -205,25 +205,40 @@ void warn_undetermined_and_correlated(const LocalProblem& lp, const std::vector<
     }
 }
 
-// Whether the noise is one sigma pooled over the channels' fixed scales: some channel whose
-// noise would be estimated has k + 2 rows or fewer (fitter.cpp, §8.10). The standard errors then
-// rest on scales that may weigh the channels wrongly (SD/s.e. up to 2.8 with 8 rows and
-// different noise per channel: experiments/README.md, "Identification study").
+// Whether the noise is one sigma pooled over the channels' fixed scales (noise_pooled). The
+// standard errors then rest on scales that may weigh the channels wrongly (SD/s.e. up to 2.8
+// with 8 rows and different noise per channel: experiments/README.md, "Identification study").
 bool noise_pooled(const LocalProblem& lp, const FitResult& res) {
-  for (const auto& cs : res.channel_summaries)
-    if (noise_estimated(*lp.settings, *lp.rows.data, cs.channel) && cs.rows <= lp.free.size() + 2)
-      return true;
-  return false;
+  return noise_pooled(*lp.settings, *lp.rows.data, res.channel_summaries, lp.free.size());
 }
 
-// Whether a fitted channel sits at its sigma floor (warn_noise_free_channels).
+// Too few rows per channel for a noise model: the fit says that its standard errors rest on the
+// channels' fixed scales.
+void warn_pooled_noise(const LocalProblem& lp, FitResult& res) {
+  if (res.dof == 0 || !noise_pooled(lp, res)) return;
+  std::size_t fewest = SIZE_MAX;
+  for (const auto& cs : res.channel_summaries) fewest = std::min(fewest, cs.rows);
+  res.warnings.push_back(
+      "too few rows to estimate each channel's noise (" + std::to_string(fewest) +
+      " in a channel, for " + std::to_string(lp.free.size()) +
+      " free parameters; more than k + 2 are needed): one sigma is pooled over the channels' "
+      "scales (their median magnitudes), so the standard errors hold only if the noise is "
+      "proportional to those scales; with noise that differs between channels they were off "
+      "by up to 3x (docs/physics.md section 8.10). Give sigma columns, or fit more rows");
+}
+
+// Whether channel cs sits at its sigma floor: an estimated noise model, residuals at most
+// kNoiseFreeSigma of its RMS fitted value (whose RMS is returned in rms).
+bool noise_free(const Dataset& d, const FitResult& res, const ChannelSummary& cs, double& rms) {
+  if (!cs.noise || !cs.rmse) return false;
+  rms = rms_fitted(res, d, static_cast<int>(cs.channel));
+  return rms > 0.0 && !(*cs.rmse > kNoiseFreeSigma * rms);
+}
+
 bool any_noise_free_channel(const Dataset& d, const FitResult& res) {
-  for (const auto& cs : res.channel_summaries) {
-    if (!cs.noise || !cs.rmse) continue;
-    const double rms = rms_fitted(res, d, static_cast<int>(cs.channel));
-    if (rms > 0.0 && !(*cs.rmse > kNoiseFreeSigma * rms)) return true;
-  }
-  return false;
+  double rms = 0.0;
+  return std::any_of(res.channel_summaries.begin(), res.channel_summaries.end(),
+                     [&](const ChannelSummary& cs) { return noise_free(d, res, cs, rms); });
 }
 
 // A closed form's coefficient i is poorly determined when it has no standard error or one
@@ -380,10 +395,8 @@ void warn_sandwich(const LocalProblem& lp, const FitStatisticsDetail* detail, Fi
 // floor, which the warning states.
 void warn_noise_free_channels(const Dataset& d, FitResult& res) {
   for (const auto& cs : res.channel_summaries) {
-    const int c = static_cast<int>(cs.channel);
-    if (!cs.noise || !cs.rmse) continue;
-    const double rms = rms_fitted(res, d, c);
-    if (!(rms > 0.0) || *cs.rmse > kNoiseFreeSigma * rms) continue;
+    double rms = 0.0;
+    if (!noise_free(d, res, cs, rms)) continue;
     const std::string name = channel_name(cs.channel);
     res.warnings.push_back(
         "the residuals of " + name + " are at rounding level (RMSE " + number_text(*cs.rmse) +
@@ -564,17 +577,7 @@ void add_fit_warnings(const LocalProblem& lp, const ParamVector& x,
         "undefined (null). Fit more rows or hold parameters fixed");
   warn_zero_and_growing_channels(*lp.rows.data, res);
   warn_noise_estimates(res);
-  if (res.dof > 0 && noise_pooled(lp, res)) {
-    std::size_t fewest = SIZE_MAX;
-    for (const auto& cs : res.channel_summaries) fewest = std::min(fewest, cs.rows);
-    res.warnings.push_back(
-        "too few rows to estimate each channel's noise (" + std::to_string(fewest) +
-        " in a channel, for " + std::to_string(lp.free.size()) +
-        " free parameters; more than k + 2 are needed): one sigma is pooled over the channels' "
-        "scales (their median magnitudes), so the standard errors hold only if the noise is "
-        "proportional to those scales; with noise that differs between channels they were off "
-        "by up to 3x (docs/physics.md section 8.10). Give sigma columns, or fit more rows");
-  }
+  warn_pooled_noise(lp, res);
   warn_noise_free_channels(*lp.rows.data, res);
   warn_outliers(lp, res);
   warn_unexplained_channels(res);

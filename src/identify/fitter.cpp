@@ -81,16 +81,12 @@ FittedRun fit_keeping_problem(const FitSettings& settings, const Dataset& data,
   NoiseRefinement noise;
   NoiseTerms noise_terms;
   run.problem = lp;
-  // A channel's noise is estimated from its own rows: every channel to be estimated needs more
-  // than k + 2 of them (a degree of freedom left after its share of the k parameters and its
-  // own sigma), or the fixed scales stay with one sigma pooled over all cells (§8.10).
-  bool enough_rows = true, any_estimated = false;
-  for (const auto& cs : res.channel_summaries)
-    if (noise_estimated(s, data, cs.channel)) {
-      any_estimated = true;
-      enough_rows &= cs.rows > lp.free.size() + 2;
-    }
-  if (any_estimated && enough_rows) {
+  // Every channel to be estimated needs more than k + 2 rows (a degree of freedom left after
+  // its share of the k parameters and its own sigma), or none is (noise_pooled).
+  const bool any_estimated =
+      std::any_of(res.channel_summaries.begin(), res.channel_summaries.end(),
+                  [&](const ChannelSummary& cs) { return noise_estimated(s, data, cs.channel); });
+  if (any_estimated && !noise_pooled(s, data, res.channel_summaries, lp.free.size())) {
     noise = refine_noise(lp, best, res, observer);
     best = noise.fit;
     run.noise_sigma =

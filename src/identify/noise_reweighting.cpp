@@ -62,6 +62,13 @@ bool noise_estimated(const FitSettings& s, const Dataset& data, Channel c) {
   return true;
 }
 
+bool noise_pooled(const FitSettings& s, const Dataset& data,
+                  const std::vector<ChannelSummary>& channels, std::size_t free) {
+  for (const auto& cs : channels)
+    if (noise_estimated(s, data, cs.channel) && cs.rows <= free + 2) return true;
+  return false;
+}
+
 NoiseRefinement refine_noise(const LocalProblem& lp, const LocalOutcome& start, FitResult& res,
                              FitObserver* observer) {
   const FitSettings& s = *lp.settings;

@@ -18,6 +18,12 @@ inline constexpr double kNoiseFreeSigma = 1e-6;
 // Whether channel c's noise is estimated (rather than taken from its sigma column).
 bool noise_estimated(const FitSettings& s, const Dataset& data, Channel c);
 
+// Whether some channel whose noise would be estimated has k + 2 rows or fewer (k free
+// parameters): a channel's noise is estimated from its own rows, so then none is, and the fixed
+// scales stay with one sigma pooled over all cells (docs/physics.md §8.10).
+bool noise_pooled(const FitSettings& s, const Dataset& data,
+                  const std::vector<ChannelSummary>& channels, std::size_t free);
+
 struct NoiseRefinement {
   // The noise model's sigma of every row of each estimated channel (empty for the others, whose
   // sigma columns stay): ResidualRows::sigma of the final problem.
