@@ -29,6 +29,7 @@ def shimmy(
     lateral_damping: float = 0.0,
     lateral: str = "elastic",
     contact_law: str = "friction",
+    integrator: str = "switching",
     psi0: float = 0.0,
     y0: float = 0.0,
     duration: float = 2.0,
@@ -48,7 +49,8 @@ def shimmy(
             (pressure None is ``hertz``); or ``from_report``, the report.json of a fit.
         N, R: normal load [N] and contact radius [m].
         lateral: ``elastic`` or ``rigid`` (y = 0); contact_law: ``friction`` or
-            ``nonholonomic`` (Keldysh's no-slip u_y = 0).
+            ``nonholonomic`` (Keldysh's no-slip u_y = 0); integrator: ``switching``
+            (implicit RODAS steps where the friction is stiff, the default) or ``explicit``.
         psi0, y0: the start (velocities 0); duration [s]; output_step: rows at k*output_step
             from the dense output (0: every integrator step).
         tol, stick_threshold, cycle_tol, table_directions: as the command line's options
@@ -66,7 +68,7 @@ def shimmy(
                    output_step=output_step, tol=tol, stick_threshold=stick_threshold,
                    cycle_tol=cycle_tol, table_directions=table_directions)
     text = dict(model=model, pressure="hertz" if pressure is None else pressure,
-                contact=contact, lateral=lateral, contact_law=contact_law)
+                contact=contact, lateral=lateral, contact_law=contact_law, integrator=integrator)
     if from_report is not None:
         text["from_report"] = str(from_report)
     out = dict(_frictionid.shimmy(_options.values("--param", params),

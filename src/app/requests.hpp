@@ -147,6 +147,7 @@ struct ShimmyRequest {
   double lateral_mass = 10.0, lateral_stiffness = 1e5, lateral_damping = 0.0;
   std::string lateral = "elastic";       // or "rigid": y = 0 throughout
   std::string contact_law = "friction";  // or "nonholonomic": Keldysh's no-slip u_y = 0
+  std::string integrator = "switching";  // or "explicit": Dormand–Prince only (§10.8)
   double psi0 = 0.0, y0 = 0.0;
   double duration = 2.0;
   std::string output;        // trajectory CSV (command line)

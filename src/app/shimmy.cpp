@@ -49,6 +49,8 @@ void check(const ShimmyRequest& r) {
           "--lateral '" + r.lateral + "': expected elastic or rigid");
   require(r.contact_law == "friction" || r.contact_law == "nonholonomic",
           "--contact-law '" + r.contact_law + "': expected friction or nonholonomic");
+  require(r.integrator == "switching" || r.integrator == "explicit",
+          "--integrator '" + r.integrator + "': expected switching or explicit");
   require(!(r.contact_law == "nonholonomic" && r.lateral == "rigid" && r.caster == 0.0),
           "--contact-law nonholonomic with --lateral rigid needs --caster != 0 (psi' = -V sin "
           "psi / e)");
@@ -94,6 +96,7 @@ ShimmyCase::ShimmyCase(const ShimmyRequest& r) {
   settings_.output_step = r.output_step;
   settings_.record = r.trajectory || !r.output.empty();
   settings_.stick_threshold = r.stick_threshold;
+  settings_.stiff_switching = r.integrator == "switching";
   settings_.cycle_tol = r.cycle_tol;
   settings_.law = r.contact_law == "nonholonomic" ? model::ShimmyContactLaw::Nonholonomic
                                                   : model::ShimmyContactLaw::Friction;
@@ -143,6 +146,7 @@ nlohmann::ordered_json ShimmyCase::description(const model::ShimmyWheel& w) cons
       {"y0", start_.y},
       {"psi0", start_.psi},
       {"duration", settings_.duration},
+      {"integrator", settings_.stiff_switching ? "switching" : "explicit"},
       {"table_directions", friction_->table ? nlohmann::ordered_json(table_directions_)
                                             : nlohmann::ordered_json(nullptr)}});
   return j;
@@ -184,6 +188,8 @@ nlohmann::ordered_json run_json(const model::ShimmyRun& run) {
       {"slip_starts", run.slip_starts},
       {"steps", run.steps},
       {"rejected_steps", run.rejected},
+      {"implicit_steps", run.implicit_steps},
+      {"stiffness_switches", run.stiffness_switches},
       {"evaluations", run.evaluations},
       {"step_limit_reached", run.step_limit}};
 }

@@ -347,6 +347,11 @@ void add_shimmy(CLI::App& app, ShimmyRequest& o, Texts& t) {
       ->capture_default_str();
   c->add_option("--tol", o.tol, "integrator tolerance (relative, and absolute per state scale)")
       ->capture_default_str();
+  c->add_option("--integrator", o.integrator,
+                "switching (implicit RODAS steps where the friction is stiff) or explicit "
+                "(Dormand-Prince only)")
+      ->check(CLI::IsMember({"switching", "explicit"}))
+      ->capture_default_str();
   c->add_option("--stick-threshold", o.stick_threshold,
                 "slip below this fraction of its scale ends a slip phase (the cohesion test)")
       ->capture_default_str();

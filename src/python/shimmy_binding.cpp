@@ -18,7 +18,7 @@ namespace {
 
 // options: the request's numbers by their command-line names without "--" and with "_" for "-"
 // (speed, caster, yaw_inertia, ...); text: model, pressure, contact, lateral, contact_law,
-// from_report.
+// integrator, from_report.
 py::dict shimmy(const app::ParameterValues& params, const std::map<std::string, double>& options,
                 const std::map<std::string, std::string>& text, bool pressure_given) {
   app::ShimmyRequest r;
@@ -31,6 +31,7 @@ py::dict shimmy(const app::ParameterValues& params, const std::map<std::string, 
   str("contact", r.model.contact);
   str("lateral", r.lateral);
   str("contact_law", r.contact_law);
+  str("integrator", r.integrator);
   str("from_report", r.from_report);
   r.model.params = params;
   r.model.pressure_given = pressure_given;

@@ -72,6 +72,30 @@ TEST(CliShimmy, PrintsTheSummaryWithItsEnergyAccountAndWritesRowsAtMultiplesOfTh
   fs::remove_all(d);
 }
 
+TEST(CliShimmy, TheIntegratorIsNamedAndItsImplicitStepsCounted) {
+  // The creep of docs/physics.md §10.8 at low speed: the default switches to implicit steps,
+  // --integrator explicit never does and takes far more steps to the same end.
+  std::string creep = kWheel + " --speed 3 --duration 0.4";
+  creep.replace(creep.find("--N 1000"), 8, "--N 2000");
+  nlohmann::json j[2];
+  int k = 0;
+  for (const char* integrator : {"switching", "explicit"}) {
+    const RunResult r = run(creep + " --integrator " + integrator);
+    ASSERT_EQ(r.code, 0) << r.err;
+    j[k] = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j[k]["integrator"], integrator);
+    ++k;
+  }
+  EXPECT_GT(j[0]["implicit_steps"].get<long>(), 0);
+  EXPECT_GT(j[0]["stiffness_switches"].get<long>(), 0);
+  EXPECT_EQ(j[1]["implicit_steps"].get<long>(), 0);
+  EXPECT_LT(5 * j[0]["steps"].get<long>(), j[1]["steps"].get<long>());
+  // The closed-form model chatters at its friction limit (§10.8), so the two end within the
+  // threshold's resolution of each other, not to the tolerance.
+  const double y = j[1]["final"]["y"].get<double>();
+  EXPECT_NEAR(j[0]["final"]["y"].get<double>(), y, 1e-3 * std::fabs(y));
+}
+
 TEST(CliShimmy, RigidStrutEndsAtRest) {
   const RunResult r = run(kWheel + " --lateral rigid --speed 10 --duration 1");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -161,7 +185,8 @@ TEST(CliShimmy, BadInputExitsWithCodeTwoOneLineAndWritesNothing) {
         kWheel + " --speed-sweep 5:30:3 --sweep-param mass:1:2:3" + sweep_dir,
         "shimmy --from-report " + (d / "other.json").string(),
         "shimmy --from-report " + (d / "report.json").string() + " --param f=0.5",
-        "shimmy --from-report " + (d / "missing.json").string()}) {
+        "shimmy --from-report " + (d / "missing.json").string(),
+        kWheel + " --integrator implicit"}) {
     const RunResult r = run(args + out);
     EXPECT_EQ(r.code, 2) << args << ": " << r.out << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;

@@ -105,6 +105,52 @@ TEST(Shimmy, FirstSlipPhaseMatchesAnIndependentRungeKuttaIntegration) {
   EXPECT_GT(compared, 10);
 }
 
+TEST(Shimmy, JacobianMatchesFiniteDifferencesOfTheRates) {
+  // Every entry of d(rate)/d(state) against central differences of shimmy_rate with the
+  // friction of the perturbed state's own slip direction, elastic and rigid strut, at slips
+  // from large to near the stiff limit.
+  const UniformExact fr;
+  const auto forces = [&](const ShimmyWheel& w, const ShimmyState& x) {
+    const auto s = spot_slip(w, x);
+    const Resultants<double> r = fr(Kinematics{0.0, s[0], x[kSPsiDot], w.N, w.R});
+    return ContactForces{r.T_x, r.T_y, r.M_z};
+  };
+  for (bool rigid : {false, true}) {
+    const ShimmyWheel w = test_wheel(rigid);
+    const ShimmyLimitCurve curve(fr, w.N, w.R, 64);
+    for (double size : {1.0, 1e-2, 1e-4}) {
+      ShimmyState x{};
+      x[kSY] = rigid ? 0.0 : 2e-4;
+      x[kSPsi] = 0.03;
+      x[kSYDot] = rigid ? 0.0 : w.V * std::tan(x[kSPsi]) + 0.4 * size;
+      x[kSPsiDot] = -3.0 * size;
+      const auto s = spot_slip(w, x);
+      const ContactForces F = forces(w, x);
+      const OdeMatrix<7> J = shimmy_jacobian(w, x, F, curve.slope(fr, std::atan2(s[1], s[0])));
+      const std::array<double, 4> dth = slip_direction_gradient(w, x);
+      const std::array<double, 4> typical{1e-3, 1.0, 0.1, 1.0};
+      for (std::size_t j = 0; j < 4; ++j) {
+        if (rigid && j < 2) continue;
+        // A step that turns the slip by about 1e-5 rad at most.
+        const double d = 1e-5 / (std::fabs(dth[j]) + 1.0 / typical[j]);
+        ShimmyState a = x, b = x;
+        a[j] += d;
+        b[j] -= d;
+        const ShimmyState ra = shimmy_rate(w, a, forces(w, a));
+        const ShimmyState rb = shimmy_rate(w, b, forces(w, b));
+        for (std::size_t i = 0; i < 7; ++i) {
+          if (rigid && i < 2) continue;
+          const double fd = (ra[i] - rb[i]) / (2.0 * d);
+          // Truncation (1e-10 relative for a turn of 1e-5) and the rounding of the rates.
+          const double noise = 1e-13 * (std::fabs(ra[i]) + std::fabs(rb[i])) / d;
+          EXPECT_NEAR(J[i][j], fd, 1e-6 * std::fabs(fd) + noise + 1e-12)
+              << "rigid " << rigid << " size " << size << " d rate[" << i << "]/d x[" << j << "]";
+        }
+      }
+    }
+  }
+}
+
 double balance_error(const ShimmyRun& r) {
   const double W = r.final[kSContactWork], D = r.final[kSDamping];
   const double size = std::max({std::fabs(r.energy_initial), std::fabs(r.energy_final),
@@ -151,6 +197,71 @@ TEST(Shimmy, RigidStrutComesToRestInBoundedSteps) {
   EXPECT_EQ(run.final[kSPsi], 0.0);
   EXPECT_LT(run.steps + run.rejected, 100000);
   EXPECT_FALSE(run.step_limit);
+}
+
+// A heavier wheel at low speed: after its first oscillations the contact creeps at its
+// friction limit, |s| a few 1e-5 of its scale for most of the run (docs/physics.md §10.8).
+ShimmyWheel creeping_wheel() {
+  ShimmyWheel w = test_wheel();
+  w.V = 3.0;
+  w.N = 2000.0;
+  w.c_psi = 2.0;
+  w.c_y = 100.0;
+  return w;
+}
+
+TEST(Shimmy, ImplicitStepsFollowTheCreepAtTheFrictionLimitWithFewSteps) {
+  ShimmySettings set;
+  set.duration = 0.5;
+  set.record = true;
+  set.output_step = 0.05;
+  std::vector<ShimmyRow> rows[2];
+  ShimmyRun runs[2];
+  for (int k = 0; k < 2; ++k) {
+    set.stiff_switching = k == 1;
+    runs[k] = simulate_shimmy(UniformExact{}, creeping_wheel(), {0.0, 0.0, 0.05, 0.0}, set,
+                              [&](const ShimmyRow& r) { rows[k].push_back(r); });
+  }
+  EXPECT_EQ(runs[0].implicit_steps, 0);
+  EXPECT_GT(runs[1].implicit_steps, 0);
+  // The explicit steps are held at the friction's stability limit through the creep.
+  EXPECT_LT(20 * (runs[1].steps + runs[1].rejected), runs[0].steps + runs[0].rejected);
+  ASSERT_EQ(rows[0].size(), rows[1].size());
+  for (std::size_t i = 0; i < rows[0].size(); ++i) {
+    EXPECT_NEAR(rows[1][i].psi, rows[0][i].psi, 1e-6 * runs[0].scales.psi) << rows[0][i].t;
+    EXPECT_NEAR(rows[1][i].y, rows[0][i].y, 1e-6 * runs[0].scales.y) << rows[0][i].t;
+  }
+  for (const ShimmyRun& r : runs) EXPECT_LT(balance_error(r), 1e-8);
+}
+
+TEST(Shimmy, ASmallStickThresholdFollowsTheCreepInsteadOfChargingImpulses) {
+  // With implicit steps the slip can be followed down to 1e-8 of its scale: the impulses of
+  // the projections and seeds fall with the threshold, at a bounded number of steps.
+  ShimmySettings set;
+  set.duration = 1.0;
+  set.stick_threshold = 1e-8;
+  const ShimmyRun run = simulate_shimmy(UniformExact{}, creeping_wheel(), {0.0, 0.0, 0.05, 0.0},
+                                        set, [](const ShimmyRow&) {});
+  EXPECT_FALSE(run.step_limit);
+  EXPECT_LT(run.steps + run.rejected, 10000);
+  EXPECT_GT(run.stick_phases, 1);
+  EXPECT_LT(std::fabs(run.impulse_work), 1e-6 * run.energy_initial);
+  EXPECT_LT(balance_error(run), 1e-8);
+}
+
+TEST(Shimmy, ExactFrictionIsNormalToItsLimitCurve) {
+  // Maximal dissipation (docs/physics.md §10.3): with kappa = 1 the curve (T_y, M_z/R)(theta)
+  // turns perpendicular to the slip direction d(theta), G'(theta).d(theta) = 0, so that the
+  // load W = G(theta) lies where the support in direction d(theta) is attained.
+  const UniformExact fr;
+  const ShimmyWheel w = test_wheel();
+  const ShimmyLimitCurve curve(fr, w.N, w.R, 64);
+  for (int i = 0; i < 97; ++i) {
+    const double th = 2.0 * M_PI * (i + 0.37) / 97.0;
+    const ContactForces g = curve.slope(fr, th);
+    const double along = g.T_y * std::cos(th) + g.M_z / w.R * std::sin(th);
+    EXPECT_LT(std::fabs(along), 1e-7 * std::hypot(g.T_y, g.M_z / w.R) + 1e-9 * w.N) << th;
+  }
 }
 
 TEST(Shimmy, CohesionTestAgainstTheUniformDisksLimits) {

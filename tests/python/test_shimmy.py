@@ -36,6 +36,18 @@ def test_shimmy_rejects_bad_input():
         frictionid.shimmy("corrected", "uniform", {"f": 0.8}, yaw_inertia=0)
     with pytest.raises(frictionid.InputError, match="--lateral"):
         frictionid.shimmy("corrected", "uniform", {"f": 0.8}, lateral="floppy")
+    with pytest.raises(frictionid.InputError, match="--integrator"):
+        frictionid.shimmy("corrected", "uniform", {"f": 0.8}, integrator="implicit")
+
+
+def test_shimmy_names_its_integrator_and_counts_the_implicit_steps(run_cli):
+    wheel = dict(WHEEL, N=2000)
+    _, explicit = frictionid.shimmy("corrected", "uniform", {"f": 0.8}, speed=3, duration=0.2,
+                                    integrator="explicit", **wheel)
+    _, switching = frictionid.shimmy("corrected", "uniform", {"f": 0.8}, speed=3, duration=0.2,
+                                     **wheel)
+    assert explicit["integrator"] == "explicit" and explicit["implicit_steps"] == 0
+    assert switching["integrator"] == "switching" and switching["implicit_steps"] > 0
 
 
 def test_shimmy_with_a_direction_table_follows_the_model():

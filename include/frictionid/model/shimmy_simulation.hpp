@@ -1,8 +1,10 @@
 // Integration of the towed wheel (docs/physics.md §10) through its slip and stick phases.
 //
 // Slip: the contact slips with s = (u_y, omega R) != 0 and resists with the model's resultants at
-// v_x = 0, v_y = u_y, omega = psi' (10.2); adaptive Dormand–Prince 5(4) with dense output, the
-// energy account (10.6) integrated as extra states. The friction depends on the direction of s
+// v_x = 0, v_y = u_y, omega = psi' (10.2); adaptive Dormand–Prince 5(4) with dense output, and
+// the implicit Rosenbrock method RODAS where the friction makes the system stiff (§10.8: the
+// explicit steps held at their stability limit), the energy account (10.6) integrated as extra
+// states. The friction depends on the direction of s
 // only, so the right-hand side is smooth while s != 0 and jumps where s passes through 0; a step
 // over which s reverses (s0.s1 < 0) is rejected, so that the integrator closes in on the
 // instant where |s| vanishes (reached in finite time, like the coasting disk of §4) with
@@ -26,6 +28,7 @@
 
 #include <frictionid/model/dopri5_dense.hpp>
 #include <frictionid/model/kinematics.hpp>
+#include <frictionid/model/rosenbrock_rodas.hpp>
 #include <frictionid/model/shimmy_limit_curve.hpp>
 #include <frictionid/model/shimmy_outcome.hpp>
 #include <frictionid/model/shimmy_wheel.hpp>
@@ -49,6 +52,7 @@ struct ShimmySettings {
   bool stop_at_limit_cycle = false;   // end the run once the limit cycle is found (sweeps)
   double rest_angle = 1e-9;           // a stick phase with |psi| <= this is rest [rad]
   long max_steps = 20'000'000;        // accepted + rejected steps
+  bool stiff_switching = true;        // implicit (RODAS) steps where the friction is stiff
   ShimmyContactLaw law = ShimmyContactLaw::Friction;
 };
 
@@ -104,7 +108,9 @@ struct ShimmyRun {
   long forced_switches = 0;    // slip phases ended because the step could not shrink further
   double first_switch = -1.0;  // the end of the first slip phase (-1: none)
   long steps = 0, rejected = 0, evaluations = 0, stick_phases = 0, slip_starts = 0;
-  bool step_limit = false;  // max_steps reached
+  long implicit_steps = 0;      // accepted RODAS steps (stiff phases, §10.8)
+  long stiffness_switches = 0;  // changes between the explicit and the implicit method
+  bool step_limit = false;      // max_steps reached
   std::vector<PsiExtreme> extremes;
   ShimmyScales scales{};
 };
@@ -357,30 +363,84 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
   double h = std::min(1e-3 / sc.rate, h_max);
   bool last_rejected = false;
   double held_start_slip = 0.0;  // |s| after the last step while the direction is held
+
+  // Stiffness (§10.8): the friction's direction turns at a rate ~ 1/|s| near s = 0. Its size is
+  // the largest row sum of the Jacobian of the motion (y, y', psi, psi'), each state in its own
+  // scale; an explicit step h is stable only while stiffness * h stays below about 3. Where the
+  // explicit steps are held there, the implicit RODAS steps take over, with the Jacobian of
+  // (10.2) and the friction's slope in theta; they hand back once stiffness * h < 1/2.
+  // The last Jacobian, reused while the state and the held direction are those it was made at.
+  OdeMatrix<7> J_cached{};
+  ShimmyState J_state{};
+  double J_held = 0.0;
+  bool J_valid = false;
+  const auto jacobian_at = [&](const ShimmyState& s) {
+    if (J_valid && s == J_state && held == J_held) return J_cached;
+    const auto sl = spot_slip(w, s);
+    const double sn = std::hypot(sl[0], sl[1]);
+    const bool held_here = held >= 0.0 && sn <= s_hold;
+    const ContactForces F = forces_of(s);
+    ContactForces dF{};
+    if (!held_here && sn > 0.0) {
+      run.evaluations += 2;
+      dF = curve.slope(friction, std::atan2(sl[1], sl[0]));
+    }
+    J_cached = shimmy_jacobian(w, s, F, dF);
+    J_state = s;
+    J_held = held;
+    J_valid = true;
+    return J_cached;
+  };
+  const auto stiffness_of = [&](const OdeMatrix<7>& J) {
+    double worst = 0.0;
+    for (std::size_t i = w.rigid_lateral ? 2 : 0; i < 4; ++i) {
+      double row_sum = 0.0;
+      for (std::size_t j = w.rigid_lateral ? 2 : 0; j < 4; ++j)
+        row_sum += std::fabs(J[i][j]) * sc.of(static_cast<int>(j));
+      worst = std::max(worst, row_sum / sc.of(static_cast<int>(i)));
+    }
+    return worst;
+  };
+  const bool may_switch = set.stiff_switching && !nonholonomic;
+  bool implicit = false;
+  int calm_steps = 0;  // implicit steps in a row that an explicit method could take
+  Dopri5DenseStep<7> st_explicit;
+  RodasStep<7> st_implicit;
+  const auto dense_at = [&](double tk) {
+    return implicit ? st_implicit.at(tk) : st_explicit.at(tk);
+  };
   while (!done && t < T) {
     if (run.steps + run.rejected >= set.max_steps) {
       run.step_limit = true;
       break;
     }
     h = std::min({h, h_max, T - t});
-    const auto st = dopri5_dense_step<7>(rhs, t, x, f, h);
+    if (implicit) {
+      st_implicit = rodas_step<7>(rhs, t, x, f, jacobian_at(x), h);
+    } else {
+      st_explicit = dopri5_dense_step<7>(rhs, t, x, f, h);
+    }
+    const ShimmyState& y1 = implicit ? st_implicit.y1 : st_explicit.y1;
+    const ShimmyState& e1 = implicit ? st_implicit.error : st_explicit.error;
     double err = 0.0;
-    bool finite = true;
+    bool finite = !implicit || st_implicit.ok;
     for (std::size_t i = 0; i < 7; ++i) {
-      const double scale = abs_tol[i] + set.rtol * std::max(std::fabs(x[i]), std::fabs(st.y1[i]));
-      const double r = st.error[i] / scale;
+      const double scale = abs_tol[i] + set.rtol * std::max(std::fabs(x[i]), std::fabs(y1[i]));
+      const double r = e1[i] / scale;
       err += r * r;
-      finite = finite && std::isfinite(st.y1[i]);
+      finite = finite && std::isfinite(y1[i]);
     }
     err = std::sqrt(err / 7.0);
+    // The error exponent: 1/(order + 1) of the embedded solution (explicit 4, implicit 3).
+    const double exponent = implicit ? -0.25 : -0.2;
     bool reversed = false;
     if (!nonholonomic) {
-      const auto a = spot_slip(w, x), b = spot_slip(w, st.y1);
+      const auto a = spot_slip(w, x), b = spot_slip(w, y1);
       reversed = a[0] * b[0] + a[1] * b[1] < 0.0;
     }
     if (!finite || !(err <= 1.0) || reversed) {
       ++run.rejected;
-      h *= reversed || !finite ? 0.25 : std::max(0.2, 0.9 * std::pow(err, -0.2));
+      h *= reversed || !finite ? 0.25 : std::max(0.2, 0.9 * std::pow(err, exponent));
       last_rejected = true;
       if (h <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(t, 1.0 / sc.rate)) {
         // The step cannot shrink further: s is at its zero however small it still is.
@@ -399,23 +459,23 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
       continue;
     }
     ++run.steps;
+    if (implicit) ++run.implicit_steps;
     const double t1 = t + h;
-    rows_until(
-        t1, [&](double tk) { return st.at(tk); }, forces_of);
+    rows_until(t1, dense_at, forces_of);
     // Extremes of psi: psi' changing sign within the step is located on the dense output.
-    const int s1 = detail::sign_of(st.y1[kSPsiDot]);
+    const int s1 = detail::sign_of(y1[kSPsiDot]);
     if (s1 != 0 && track.sign != 0 && s1 != track.sign &&
         detail::sign_of(x[kSPsiDot]) == track.sign) {
       double a = t, b = t1;
       for (int it = 0; it < 60; ++it) {
         const double mid = 0.5 * (a + b);
-        (detail::sign_of(st.at(mid)[kSPsiDot]) == track.sign ? a : b) = mid;
+        (detail::sign_of(dense_at(mid)[kSPsiDot]) == track.sign ? a : b) = mid;
       }
-      track.see(0.5 * (a + b), st.at(0.5 * (a + b))[kSPsi]);
+      track.see(0.5 * (a + b), dense_at(0.5 * (a + b))[kSPsi]);
     }
     t = t1;
-    x = st.y1;
-    f = st.f1;
+    x = y1;
+    f = implicit ? rhs(t, x) : st_explicit.f1;
     if (track.turn(t, x[kSPsi], s1)) after_extreme();
     row_now(t, x, forces_of(x));
     if (std::fabs(x[kSPsi]) > 0.5 * M_PI) {
@@ -423,11 +483,30 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
       done = true;
       break;
     }
-    double factor = err > 0.0 ? 0.9 * std::pow(err, -0.2) : 5.0;
+    double factor = err > 0.0 ? 0.9 * std::pow(err, exponent) : 5.0;
     factor = std::min(5.0, std::max(0.2, factor));
     if (last_rejected) factor = std::min(1.0, factor);
     last_rejected = false;
+    const double h_taken = h;
     h *= factor;
+    // The switch between the methods, on the step just taken (its size is what the explicit
+    // method could afford, or what the implicit one needed).
+    if (may_switch) {
+      const auto sl = spot_slip(w, x);
+      const double near_zero = std::hypot(sl[0], sl[1]) < 0.1 * sc.slip;
+      if (!implicit && near_zero && stiffness_of(jacobian_at(x)) * h_taken > 2.5) {
+        implicit = true;
+        calm_steps = 0;
+        ++run.stiffness_switches;
+      } else if (implicit) {
+        const bool calm = !near_zero || stiffness_of(jacobian_at(x)) * h_taken < 0.5;
+        calm_steps = calm ? calm_steps + 1 : 0;
+        if (calm_steps >= 4) {
+          implicit = false;
+          ++run.stiffness_switches;
+        }
+      }
+    }
     const double sn = nonholonomic ? 0.0 : s_norm(x);
     const bool fell_back = held >= 0.0 && sn < held_start_slip;
     if (held >= 0.0 && sn > s_hold) {

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include <frictionid/model/dormand_prince.hpp>
+#include <frictionid/model/rosenbrock_rodas.hpp>
 
 namespace frictionid::model {
 
@@ -73,6 +74,66 @@ inline ShimmyState shimmy_rate(const ShimmyWheel& w, const ShimmyState& x, const
   d[kSContactWork] = yd * F_Y + pd * yaw_moment;
   d[kSFriction] = f.T_y * u_y + f.M_z * pd;
   return d;
+}
+
+// The slip direction theta of s = (u_y, omega R) = |s| (cos theta, sin theta) and its gradient
+// with respect to (y, y', psi, psi'): d theta = (s1 d s2 - s2 d s1)/|s|^2 with (10.1). It grows
+// like 1/|s| towards s = 0: the stiffness of the friction (docs/physics.md §10.8).
+inline std::array<double, 4> slip_direction_gradient(const ShimmyWheel& w, const ShimmyState& x) {
+  const auto s = spot_slip(w, x);
+  const double n2 = s[0] * s[0] + s[1] * s[1];
+  if (!(n2 > 0.0)) return {0.0, 0.0, 0.0, 0.0};
+  const double psi = x[kSPsi], c = std::cos(psi), sn = std::sin(psi);
+  // d s1 = cos psi dy' - (V cos psi + y' sin psi) dpsi - e dpsi';  d s2 = R dpsi'.
+  return {0.0, -s[1] * c / n2, s[1] * (w.V * c + x[kSYDot] * sn) / n2,
+          (s[0] * w.R + s[1] * w.caster) / n2};
+}
+
+// The Jacobian of shimmy_rate with respect to the state, for contact forces f that depend on
+// the state through the slip direction only, with slope df = d(T_x, T_y, M_z)/d theta (zero
+// when the forces are held fixed). The energy components (4..6) do not act back: their columns
+// are zero.
+inline OdeMatrix<7> shimmy_jacobian(const ShimmyWheel& w, const ShimmyState& x,
+                                    const ContactForces& f, const ContactForces& df) {
+  OdeMatrix<7> J{};
+  const double yd = x[kSYDot], psi = x[kSPsi], pd = x[kSPsiDot];
+  const double c = std::cos(psi), sn = std::sin(psi);
+  const std::array<double, 4> dth = slip_direction_gradient(w, x);
+  std::array<double, 4> dTx, dTy, dMz, dFY, dyaw, du;
+  const double F_Y = lateral_contact_force(f, psi);
+  const double yaw_moment = w.caster * f.T_y - f.M_z;
+  const double u_y = lateral_slip(w, yd, psi, pd);
+  du = {0.0, c, -w.V * c - yd * sn, -w.caster};
+  for (std::size_t j = 0; j < 4; ++j) {
+    dTx[j] = df.T_x * dth[j];
+    dTy[j] = df.T_y * dth[j];
+    dMz[j] = df.M_z * dth[j];
+    dFY[j] = -sn * dTx[j] - c * dTy[j];
+    dyaw[j] = w.caster * dTy[j] - dMz[j];
+  }
+  dFY[kSPsi] += -f.T_x * c + f.T_y * sn;
+  for (std::size_t j = 0; j < 4; ++j) {
+    if (!w.rigid_lateral) {
+      J[kSY][j] = j == kSYDot ? 1.0 : 0.0;
+      J[kSYDot][j] = dFY[j] / w.m_y;
+    }
+    J[kSPsi][j] = j == kSPsiDot ? 1.0 : 0.0;
+    J[kSPsiDot][j] = dyaw[j] / w.J;
+    J[kSContactWork][j] = yd * dFY[j] + pd * dyaw[j];
+    J[kSFriction][j] = dTy[j] * u_y + f.T_y * du[j] + dMz[j] * pd;
+  }
+  if (!w.rigid_lateral) {
+    J[kSYDot][kSY] -= w.k_y / w.m_y;
+    J[kSYDot][kSYDot] -= w.c_y / w.m_y;
+  }
+  J[kSDamping][kSYDot] = 2.0 * w.c_y * yd;
+  J[kSContactWork][kSYDot] += F_Y;
+  J[kSPsiDot][kSPsi] -= w.k_psi / w.J;
+  J[kSPsiDot][kSPsiDot] -= w.c_psi / w.J;
+  J[kSDamping][kSPsiDot] = 2.0 * w.c_psi * pd;
+  J[kSContactWork][kSPsiDot] += yaw_moment;
+  J[kSFriction][kSPsiDot] += f.M_z;
+  return J;
 }
 
 // d s/dt = (d u_y/dt, R psi'') under given contact forces.
