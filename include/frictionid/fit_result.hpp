@@ -83,6 +83,10 @@ struct FitResult {
   ModelKind model_kind = ModelKind::Seed;
   std::string model;  // model_name(model_kind), for reports
   std::string pressure;
+  // The contact spot the fit was made on, as --contact spells it (model::contact_spot_label):
+  // "circle", "ellipse:0.7", "rect:Q", "map:FILE". With a fitted aspect (--free q) it still
+  // names the spot given; the fitted q is parameter("q").
+  std::string contact;
   std::size_t rows = 0;
   std::vector<Channel> channels;  // fitted channels, in canonical order
   std::vector<ParameterEstimate> parameters;

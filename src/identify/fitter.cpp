@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include <frictionid/model/contact_spot.hpp>
 #include "identify/bootstrap_intervals.hpp"
 #include "identify/fit_problem.hpp"
 #include "identify/fit_search.hpp"
@@ -50,6 +51,7 @@ FittedRun fit_keeping_problem(const FitSettings& settings, const Dataset& data,
   res.model_kind = s.model;
   res.model = model_name(s.model);
   res.pressure = s.law_label;
+  res.contact = model::contact_spot_label(s.contact);
   res.rows = data.rows();
   res.loss = loss_label(s);
 

@@ -179,18 +179,4 @@ std::shared_ptr<const model::PressureMap> load_pressure_map(const std::string& p
   return map;
 }
 
-std::string contact_spot_label(const model::ContactSpot& spot) {
-  switch (spot.kind) {
-    case model::SpotKind::Circle:
-      return "circle";
-    case model::SpotKind::Ellipse:
-      return "ellipse:" + text::shortest_number(spot.q);
-    case model::SpotKind::Rect:
-      return "rect:" + text::shortest_number(spot.q);
-    case model::SpotKind::Map:
-      return "map:" + (spot.map ? spot.map->source : std::string());
-  }
-  return "?";
-}
-
 }  // namespace frictionid

@@ -5,10 +5,10 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <system_error>
 #include <vector>
+
+#include <frictionid/model/shortest_number.hpp>
 
 namespace frictionid::text {
 
@@ -40,12 +40,7 @@ std::size_t escaped_size(unsigned char u) {
 }  // namespace
 
 std::string shortest_number(double x) {
-  char buf[40];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-    if (std::strtod(buf, nullptr) == x) break;
-  }
-  return buf;
+  return model::shortest_number(x);
 }
 
 std::string shown(std::string_view text, std::size_t max_bytes) {

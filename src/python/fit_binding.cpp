@@ -9,7 +9,6 @@
 #include <frictionid/fit_error.hpp>
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/input_error.hpp>
-#include <frictionid/io/pressure_map_reader.hpp>
 #include <frictionid/io/report_writer.hpp>
 #include "app/fit_request.hpp"
 #include "app/option_parsers.hpp"
@@ -34,7 +33,6 @@ struct FitOutput {
   FitResult result;
   std::shared_ptr<Dataset> data;
   app::RowSigmas sigma;
-  std::string contact = "circle";  // the spot as reports name it
 };
 
 std::shared_ptr<Dataset> from_columns(const py::dict& columns, const std::string& source,
@@ -51,7 +49,6 @@ std::shared_ptr<FitOutput> run_fit(const std::shared_ptr<Dataset>& data,
   const FitSettings s = app::fit_settings(request, request.model, *data);
   auto out = std::make_shared<FitOutput>();
   out->data = data;
-  out->contact = contact_spot_label(s.contact);
   PythonObserver observer(cancel, progress);
   try {
     py::gil_scoped_release release;
@@ -199,7 +196,8 @@ void register_fit(py::module_& m) {
 
   py::class_<FitOutput, std::shared_ptr<FitOutput>>(m, "FitOutput")
       .def(
-          "report", [](const FitOutput& f) { return to_python(report_json(f.result, f.contact)); },
+          "report",
+          [](const FitOutput& f) { return to_python(report_json(f.result, f.result.contact)); },
           "report.json's content as Python values (no JSON text in between).")
       .def(
           "write_report",
@@ -209,10 +207,13 @@ void register_fit(py::module_& m) {
             const ThreadBudgetScope scope(&budget);
             ReportOptions options;
             options.threads = threads;
-            options.contact = f.contact;
+            options.contact = f.result.contact;
             return write_report(dir, f.result, *f.data, options);
           },
           py::arg("dir"), py::arg("threads") = 0)
+      .def_property_readonly(
+          "contact", [](const FitOutput& f) { return f.result.contact; },
+          "The contact spot the fit was made on, as contact= spells it (FitResult::contact).")
       .def_property_readonly("data", [](const FitOutput& f) { return f.data; })
       .def_property_readonly("eps", [](const FitOutput& f) { return to_numpy(f.result.eps); })
       .def_property_readonly(

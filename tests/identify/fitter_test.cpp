@@ -342,5 +342,15 @@ TEST(Fitter, ResultsAreFoundByParameterName) {
   EXPECT_EQ(r.parameter("n"), nullptr);  // the seed model has no exponent
 }
 
+TEST(Fitter, AFitOnTheCircleNamesItsContactCircle) {
+  const Law law = Law::hertz();
+  const Dataset d =
+      generate_dataset(ModelKind::Seed, law, truth_params(law), SyntheticDesign{}, NoiseSpec{}, 5);
+  const FitResult r =
+      Fitter(FitSettings::defaults(ModelKind::Seed, law, "law", model::ContactSpot::circle()))
+          .fit(d);
+  EXPECT_EQ(r.contact, "circle");
+}
+
 }  // namespace
 }  // namespace frictionid

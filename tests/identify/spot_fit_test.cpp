@@ -74,6 +74,33 @@ TEST(SpotFit, NoiseFreeRectangleDataWithAFreeAspectRecoversTheAspectToEightDigit
   expect_digits(r, expected, 8.0);
 }
 
+TEST(SpotFit, AFitOnAnEllipseNamesItsContactWithTheAspect) {
+  const auto spot = model::ContactSpot::ellipse(0.7);
+  SyntheticDesign design = small_design();
+  design.rows = 300;
+  const Dataset d = generate_dataset(ModelKind::Exact, Law::hertz(), truth_on(Law::hertz(), spot),
+                                     design, NoiseSpec{}, 7, spot);
+  const FitResult r =
+      Fitter(FitSettings::defaults(ModelKind::Exact, Law::hertz(), "hertz", spot)).fit(d);
+  EXPECT_EQ(r.contact, "ellipse:0.7");
+}
+
+// The label names the spot as given; the aspect the data hold is the estimate of q.
+TEST(SpotFit, AFreeAspectKeepsTheGivenSpotInTheContactAndTheFittedAspectInQ) {
+  const auto spot = model::ContactSpot::rect(0.6);
+  const Dataset d = generate_dataset(ModelKind::Exact, Law::hertz(), truth_on(Law::hertz(), spot),
+                                     small_design(), NoiseSpec{}, 8, spot);
+  FitSettings s = FitSettings::defaults(ModelKind::Exact, Law::hertz(), "hertz",
+                                        model::ContactSpot::rect(0.72));
+  s.params[kQ].fixed = false;
+  s.global = false;
+  const FitResult r = Fitter(s).fit(d);
+  ASSERT_TRUE(r.solver.converged);
+  EXPECT_EQ(r.contact, "rect:0.72");
+  ASSERT_NE(r.parameter("q"), nullptr);
+  EXPECT_GE(matched_digits(r.parameter("q")->value, 0.6), 6.0) << r.parameter("q")->value;
+}
+
 TEST(SpotFit, TheRowCacheHoldsEverySpinningRowAtTheStartingAspectAndNothingWhenTheExponentIsFree) {
   const auto spot = model::ContactSpot::ellipse(0.5);
   const Dataset d =

@@ -9,6 +9,7 @@ import pandas as pd
 import pytest
 
 import frictionid
+from frictionid import _frictionid
 
 TRUTH = {"f": 0.9, "kappa": 1.15, "h": 0.08, "h_y": 0.05}
 
@@ -35,6 +36,22 @@ def test_a_fit_on_an_ellipse_gives_the_report_of_the_command_line(ellipse_csv, c
     assert py.report == cli
     assert set(py.params) == {"f", "kappa", "h", "h_y", "q"}
     assert "M_tilt" in py.channels
+
+
+def test_the_extension_names_the_spot_of_its_fit_in_a_read_only_contact(ellipse_csv,
+                                                                        example_csv):
+    for data, model, contact in ((ellipse_csv, "exact", "ellipse:0.7"),
+                                 (example_csv, "seed", "circle")):
+        request = _frictionid.FitRequest()
+        request.model = model
+        request.contact = contact
+        request.no_global = True
+        output = _frictionid.fit(_frictionid.load_dataset_csv(str(data)), request)
+        assert output.contact == contact
+        # The report names a spot other than the circle, with the same label.
+        assert output.report().get("contact", "circle") == contact
+        with pytest.raises(AttributeError):
+            output.contact = "rect:0.5"
 
 
 def test_free_q_fits_the_aspect_as_the_command_line_does(run_cli, tmp_path, cli_report):

@@ -25,7 +25,8 @@ inline constexpr std::size_t kMaxPressureMapSamples = 10000;
 std::shared_ptr<const model::PressureMap> load_pressure_map(const std::string& path);
 
 // The spot as --contact spells it: "circle", "ellipse:Q" and "rect:Q" with the shortest text
-// that reads back as Q, "map:FILE" with the map's source as given.
-std::string contact_spot_label(const model::ContactSpot& spot);
+// that reads back as Q, "map:FILE" with the map's source as given (model/contact_spot.hpp's,
+// which the fitter uses for FitResult::contact).
+using model::contact_spot_label;
 
 }  // namespace frictionid

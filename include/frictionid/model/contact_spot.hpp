@@ -16,6 +16,7 @@
 #include <frictionid/model/gauss_legendre_rule.hpp>
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/model/scalar_ops.hpp>
+#include <frictionid/model/shortest_number.hpp>
 
 namespace frictionid::model {
 
@@ -75,6 +76,23 @@ struct ContactSpot {
   // Whether the aspect q is a property of the spot that a fit can identify.
   bool has_aspect() const { return kind == SpotKind::Ellipse || kind == SpotKind::Rect; }
 };
+
+// The spot as --contact spells it: "circle", "ellipse:Q" and "rect:Q" with the shortest text
+// that reads back as Q, "map:FILE" with the map's source as given. Reports and
+// FitResult::contact name a fit's spot with it.
+inline std::string contact_spot_label(const ContactSpot& spot) {
+  switch (spot.kind) {
+    case SpotKind::Circle:
+      return "circle";
+    case SpotKind::Ellipse:
+      return "ellipse:" + shortest_number(spot.q);
+    case SpotKind::Rect:
+      return "rect:" + shortest_number(spot.q);
+    case SpotKind::Map:
+      return "map:" + (spot.map ? spot.map->source : std::string());
+  }
+  return "?";
+}
 
 // Moments of sigma0 over the spot, in units of R^2 (A0), R^3 (Ax, Ay), R^4 (Axx, Axy, Ayy):
 // A0 = ∫sigma0 dA, Ax = ∫sigma0 x dA, ... They give the load's normalisation and the centre of
