@@ -6,7 +6,7 @@
 #
 #   experiments/shimmy/run.sh        # binary: $FRICTIONID, else build/frictionid
 #
-# Writes sweep_friction.csv, sweep_nonholonomic.csv, timing.csv, comparison.svg and results.md
+# Writes sweep_friction.csv, sweep_nonholonomic.csv, timing.csv, creep.csv, comparison.svg and results.md
 # here; scratch files to out/.
 set -euo pipefail
 
@@ -56,7 +56,40 @@ print(f"{sys.argv[2]},{float(sys.argv[3]):.4f},{j['steps']},{j['evaluations']},{
 PY
 done
 
-# 3. The figure and the results.
+# 3. Stiffness (docs/physics.md §10.8): the same wheel at 2 kN and 3 m/s creeps at its friction
+#    limit after its first oscillations. Each model with implicit steps where the friction is
+#    stiff (--integrator switching, the default) and with Dormand-Prince only, 1 s.
+creep=()
+for a in "${wheel[@]}"; do creep+=("$([[ "$a" == 1000 ]] && echo 2000 || echo "$a")"); done  # N = 2 kN
+echo "model,integrator,stick_threshold,wall_time_s,steps,rejected,implicit_steps,slip_starts,impulse_work_rel,balance_error_rel,outcome" > "$here/creep.csv"
+for model in seed exact:4096 exact; do
+  for integrator in switching explicit; do
+    for threshold in 1e-5 1e-8; do
+      # Dormand-Prince alone at 1e-8 takes tens of millions of steps (minutes): not run.
+      [[ "$integrator" == explicit && "$threshold" == 1e-8 ]] && continue
+      # The untabulated exact model with explicit steps only: ~60 s for the same answer as 4096.
+      [[ "$model" == exact && "$integrator" == explicit ]] && continue
+      # The closed forms chatter at small thresholds (§10.8): minutes, not run.
+      [[ "$model" == seed && "$threshold" == 1e-8 ]] && continue
+      table=0
+      [[ "$model" == *:* ]] && table="${model#*:}"
+      "$bin" shimmy "${creep[@]}" --model "${model%%:*}" --table-directions "$table" --speed 3 \
+        --duration 1 --integrator "$integrator" --stick-threshold "$threshold" \
+        > "$out/creep.json" || true
+      "$py" - "$out/creep.json" "$model" "$integrator" "$threshold" >> "$here/creep.csv" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+e = j["energy"]
+print(f"{sys.argv[2]},{sys.argv[3]},{sys.argv[4]},{j['wall_time_s']:.3f},{j['steps']},"
+      f"{j['rejected_steps']},{j['implicit_steps']},{j['slip_starts']},"
+      f"{e['impulse_work'] / e['initial']:.2e},{e['balance_error'] / e['initial']:.1e},"
+      f"{j['outcome']['kind']}")
+PY
+    done
+  done
+done
+
+# 4. The figure and the results.
 "$py" - "$here" "$out" "$binary_id" <<'PY'
 import csv, json, sys
 import matplotlib
@@ -92,6 +125,16 @@ lines += ["", "One 2 s run at 1 ms output steps (V = 20 m/s), best of three wall
           "| model | wall time [s] | steps | evaluations | outcome |", "|---|---|---|---|---|"]
 for r in csv.DictReader(open(f"{here}/timing.csv")):
     lines.append(f"| {r['model']} | {r['wall_time_s']} | {r['steps']} | {r['evaluations']} | {r['outcome']} |")
+lines += ["", "Stiffness: the same wheel at 2 kN and V = 3 m/s, 1 s, creeping at its friction limit "
+          "(docs/physics.md §10.8); switching: implicit RODAS steps where the friction is stiff "
+          "(the default), explicit: Dormand-Prince only:", "",
+          "| model | integrator | stick threshold | wall time [s] | steps | implicit steps | "
+          "slip starts | impulse_work / E0 | balance error / E0 |",
+          "|---|---|---|---|---|---|---|---|---|"]
+for r in csv.DictReader(open(f"{here}/creep.csv")):
+    lines.append(f"| {r['model']} | {r['integrator']} | {r['stick_threshold']} | {r['wall_time_s']} | "
+                 f"{r['steps']} | {r['implicit_steps']} | {r['slip_starts']} | "
+                 f"{r['impulse_work_rel']} | {r['balance_error_rel']} |")
 open(f"{here}/results.md", "w").write("\n".join(lines) + "\n")
 PY
 cat "$here/results.md"
