@@ -59,7 +59,8 @@ def shimmy(
     Returns:
         (trajectory, summary): a pandas DataFrame of t, y, y_dot, psi, psi_dot, u_y, T_y, M_z
         and a dict with the final state, the outcome (rest, limit_cycle with amplitude and
-        frequency, growing, duration) and the energy account.
+        frequency, growing, duration with a detail: holding, decaying, few_cycles or irregular)
+        and the energy account.
     """
     options = dict(N=N, R=R, speed=speed, caster=caster, yaw_inertia=yaw_inertia,
                    yaw_stiffness=yaw_stiffness, yaw_damping=yaw_damping,

@@ -163,6 +163,11 @@ nlohmann::ordered_json run_json(const model::ShimmyRun& run) {
   }
   if (run.outcome == model::ShimmyOutcome::Growing)
     outcome["growth_per_cycle"] = json_number(run.cycle.growth);
+  if (run.outcome == model::ShimmyOutcome::Duration) {
+    outcome["detail"] = model::duration_detail_name(run.cycle.detail);
+    if (run.cycle.detail == model::DurationDetail::Decaying)
+      outcome["growth_per_cycle"] = json_number(run.cycle.growth);
+  }
   return nlohmann::ordered_json{
       {"t_end", run.t_end},
       {"final",

@@ -99,7 +99,14 @@ SweepResult shimmy_sweep(const ShimmyRequest& r, const std::function<void(int, i
     for (int i = 0; i < speeds.n; ++i) {
       const double V = speeds.at(i);
       const model::ShimmyRun run = classify(w, V, start);
-      SweepPoint pt{V, p, model::outcome_name(run.outcome), 0.0, 0.0, is_shimmy(run.outcome)};
+      SweepPoint pt{V,
+                    p,
+                    model::outcome_name(run.outcome),
+                    model::duration_detail_name(run.cycle.detail),
+                    0.0,
+                    0.0,
+                    is_shimmy(run.outcome)};
+      if (run.outcome != model::ShimmyOutcome::Duration) pt.detail.clear();
       if (pt.shimmy) {
         pt.amplitude = run.cycle.amplitude;
         pt.frequency = run.cycle.frequency;
@@ -137,6 +144,7 @@ SweepResult shimmy_sweep(const ShimmyRequest& r, const std::function<void(int, i
     nlohmann::ordered_json e{{"speed", p.speed}};
     if (!out.param_name.empty()) e[out.param_name] = p.param;
     e["outcome"] = p.outcome;
+    if (!p.detail.empty()) e["detail"] = p.detail;
     e["amplitude"] = p.amplitude;
     e["frequency"] = p.frequency;
     pts.push_back(std::move(e));
@@ -263,8 +271,8 @@ std::string sweep_html(const SweepResult& s, const std::string& title) {
   for (const auto& p : s.points) {
     page += "<tr>" + html::num_cell(p.speed);
     if (!s.param_name.empty()) page += html::num_cell(p.param);
-    page += "<td>" + p.outcome + "</td>" + html::num_cell(p.amplitude) +
-            html::num_cell(p.frequency) + "</tr>\n";
+    page += "<td>" + p.outcome + (p.detail.empty() ? "" : " (" + p.detail + ")") + "</td>" +
+            html::num_cell(p.amplitude) + html::num_cell(p.frequency) + "</tr>\n";
   }
   page += "</table>\n" + html::page_end();
   return page;

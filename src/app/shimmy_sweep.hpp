@@ -26,6 +26,7 @@ SweepRange parse_sweep_range(const std::string& option, const std::string& text)
 struct SweepPoint {
   double speed = 0.0, param = 0.0;
   std::string outcome;
+  std::string detail;  // why a `duration` run is not judged (holding, decaying, ...); else empty
   double amplitude = 0.0, frequency = 0.0;
   bool shimmy = false;  // limit_cycle or growing
 };

@@ -86,6 +86,9 @@ TEST(CliShimmy, TheIntegratorIsNamedAndItsImplicitStepsCounted) {
     EXPECT_EQ(j[k]["integrator"], integrator);
     ++k;
   }
+  // At 3 m/s the oscillation has died out by 0.4 s: not judged, and the summary says why.
+  EXPECT_EQ(j[0]["outcome"]["kind"], "duration");
+  EXPECT_TRUE(j[0]["outcome"].contains("detail"));
   EXPECT_GT(j[0]["implicit_steps"].get<long>(), 0);
   EXPECT_GT(j[0]["stiffness_switches"].get<long>(), 0);
   EXPECT_EQ(j[1]["implicit_steps"].get<long>(), 0);
@@ -113,6 +116,17 @@ TEST(CliShimmy, SpeedSweepWritesTheMapAndTheKeldyshBaselineRuns) {
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["points"].size(), 3u);
     EXPECT_TRUE(j.contains("onsets"));
+    // A run that is neither stable at rest nor shimmying says why it was not judged.
+    for (const auto& p : j["points"]) {
+      if (p["outcome"] != "duration") {
+        EXPECT_FALSE(p.contains("detail")) << p;
+        continue;
+      }
+      const std::string detail = p.at("detail");
+      EXPECT_TRUE(detail == "holding" || detail == "decaying" || detail == "few_cycles" ||
+                  detail == "irregular")
+          << detail;
+    }
     std::ifstream in(d / "shimmy.csv");
     std::string header;
     std::getline(in, header);

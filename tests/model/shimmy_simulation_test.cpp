@@ -345,7 +345,31 @@ TEST(ShimmyOutcome, CyclesAreClassifiedByTheirAmplitudes) {
   EXPECT_NEAR(steady.amplitude, 0.1, 1e-12);
   EXPECT_NEAR(steady.frequency, 10.0, 1e-9);  // period 0.1 s
   EXPECT_EQ(classify_cycles(extremes(1.2), 1e-3).outcome, ShimmyOutcome::Growing);
-  EXPECT_EQ(classify_cycles(extremes(0.8), 1e-3).outcome, ShimmyOutcome::Duration);
+  const CycleEstimate decaying = classify_cycles(extremes(0.8), 1e-3);
+  EXPECT_EQ(decaying.outcome, ShimmyOutcome::Duration);
+  EXPECT_EQ(decaying.detail, DurationDetail::Decaying);
+  EXPECT_NEAR(decaying.growth, -0.2, 1e-12);
+  EXPECT_EQ(steady.detail, DurationDetail::None);
+  std::vector<PsiExtreme> few = extremes(0.8);
+  few.resize(5);
+  EXPECT_EQ(classify_cycles(few, 1e-3).detail, DurationDetail::FewCycles);
+  // Alternately growing and shrinking: neither a limit cycle, nor growing, nor decaying.
+  std::vector<PsiExtreme> beat = extremes(1.0);
+  for (std::size_t k = 0; k < beat.size(); ++k) beat[k].psi *= 1.0 + 0.05 * ((k / 2) % 2);
+  EXPECT_EQ(classify_cycles(beat, 1e-3).detail, DurationDetail::Irregular);
+}
+
+TEST(ShimmyOutcome, ARunThatEndsHoldingTheForkOffCentreSaysSo) {
+  // Low speed: the oscillation dies out and the contact holds the fork at a small psi != 0
+  // while the strut drifts at V tan psi (docs/physics.md §10.5).
+  ShimmySettings set;
+  set.duration = 1.0;
+  const ShimmyRun run = simulate_shimmy(UniformExact{}, creeping_wheel(), {0.0, 0.0, 0.05, 0.0},
+                                        set, [](const ShimmyRow&) {});
+  ASSERT_EQ(run.outcome, ShimmyOutcome::Duration);
+  ASSERT_TRUE(run.in_stick);
+  EXPECT_NE(run.final[kSPsi], 0.0);
+  EXPECT_EQ(run.cycle.detail, DurationDetail::Holding);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // How a shimmy run ended (docs/physics.md §10.5), from the extremes of psi: rest (a stick phase
 // that holds), limit_cycle (the half peak-to-peak amplitude repeats from cycle to cycle),
 // growing (it grows from cycle to cycle, or the fork turned past 90 degrees), duration (none of
-// these before the end: still decaying, or irregular).
+// these before the end: holding at psi != 0, still decaying, too few cycles, or irregular).
 #pragma once
 
 #include <cmath>
@@ -30,8 +30,30 @@ struct PsiExtreme {
   double t, psi;
 };
 
+// Why a run ended as `duration` (docs/physics.md §10.5): the contact holds the fork at psi != 0
+// while the strut drifts (a stick phase at the end), the oscillation still decays (the last two
+// cycles shrank by more than the tolerance), fewer than three cycles to judge, or neither.
+enum class DurationDetail { None, Holding, Decaying, FewCycles, Irregular };
+
+inline const char* duration_detail_name(DurationDetail d) {
+  switch (d) {
+    case DurationDetail::Holding:
+      return "holding";
+    case DurationDetail::Decaying:
+      return "decaying";
+    case DurationDetail::FewCycles:
+      return "few_cycles";
+    case DurationDetail::Irregular:
+      return "irregular";
+    case DurationDetail::None:
+      break;
+  }
+  return "";
+}
+
 struct CycleEstimate {
   ShimmyOutcome outcome = ShimmyOutcome::Duration;
+  DurationDetail detail = DurationDetail::FewCycles;  // for Duration
   double amplitude = 0.0;  // half peak-to-peak of psi over the last cycle [rad]
   double frequency = 0.0;  // 1/period over the last cycles [Hz]
   double growth = 0.0;     // amplitude ratio of the last cycle to the one before, minus 1
@@ -48,6 +70,7 @@ inline CycleEstimate classify_cycles(const std::vector<PsiExtreme>& ex, double t
   c.amplitude = amp(n - 1);
   if (n >= 3) c.frequency = 1.0 / (ex[n - 1].t - ex[n - 3].t);
   if (n < 6) return c;
+  c.detail = DurationDetail::Irregular;
   const double a0 = amp(n - 5), a1 = amp(n - 3), a2 = amp(n - 1);
   if (!(a0 > 0.0) || !(a1 > 0.0)) return c;
   const double g1 = a1 / a0 - 1.0, g2 = a2 / a1 - 1.0;
@@ -58,6 +81,9 @@ inline CycleEstimate classify_cycles(const std::vector<PsiExtreme>& ex, double t
     c.outcome = ShimmyOutcome::LimitCycle;
   else if (g1 > tol && g2 > tol)
     c.outcome = ShimmyOutcome::Growing;
+  else if (g1 < -tol && g2 < -tol)
+    c.detail = DurationDetail::Decaying;
+  if (c.outcome != ShimmyOutcome::Duration) c.detail = DurationDetail::None;
   return c;
 }
 

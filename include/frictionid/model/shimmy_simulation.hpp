@@ -534,6 +534,9 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
     // The candidate extreme still open at the end is not an extreme.
     run.cycle = classify_cycles(run.extremes, set.cycle_tol);
     run.outcome = turned_over ? ShimmyOutcome::Growing : run.cycle.outcome;
+    // A run that ends with the contact holding the fork off centre is not oscillating any more,
+    // whatever its last cycles did.
+    if (run.outcome == ShimmyOutcome::Duration && stick) run.cycle.detail = DurationDetail::Holding;
   }
   return run;
 }
