@@ -99,14 +99,9 @@ SweepResult shimmy_sweep(const ShimmyRequest& r, const std::function<void(int, i
     for (int i = 0; i < speeds.n; ++i) {
       const double V = speeds.at(i);
       const model::ShimmyRun run = classify(w, V, start);
-      SweepPoint pt{V,
-                    p,
-                    model::outcome_name(run.outcome),
-                    model::duration_detail_name(run.cycle.detail),
-                    0.0,
-                    0.0,
-                    is_shimmy(run.outcome)};
-      if (run.outcome != model::ShimmyOutcome::Duration) pt.detail.clear();
+      SweepPoint pt{V, p, model::outcome_name(run.outcome), "", 0.0, 0.0, is_shimmy(run.outcome)};
+      if (run.outcome == model::ShimmyOutcome::Duration)
+        pt.detail = model::duration_detail_name(run.cycle.detail);
       if (pt.shimmy) {
         pt.amplitude = run.cycle.amplitude;
         pt.frequency = run.cycle.frequency;

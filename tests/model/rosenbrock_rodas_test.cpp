@@ -11,8 +11,8 @@ namespace {
 
 using namespace frictionid::model;
 
-// y' = (y1 y2 ... ) : the rotating oscillator y1' = -y2, y2' = y1 with a stiff component
-// y3' = -lambda (y3 - y1^2) ; its exact solution for y1, y2 is (cos t, sin t).
+// The rotating oscillator y1' = -y2, y2' = y1, exact solution (cos t, sin t), with a component
+// y3' = -lambda (y3 - y1^2) that is stiff for large lambda and acts on nothing else.
 struct Stiff {
   double lambda;
   OdeVector<double, 3> operator()(double, const OdeVector<double, 3>& y) const {

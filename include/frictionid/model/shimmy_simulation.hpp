@@ -369,6 +369,7 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
   // scale; an explicit step h is stable only while stiffness * h stays below about 3. Where the
   // explicit steps are held there, the implicit RODAS steps take over, with the Jacobian of
   // (10.2) and the friction's slope in theta; they hand back once stiffness * h < 1/2.
+
   // The last Jacobian, reused while the state and the held direction are those it was made at.
   OdeMatrix<7> J_cached{};
   ShimmyState J_state{};
@@ -493,7 +494,7 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
     // method could afford, or what the implicit one needed).
     if (may_switch) {
       const auto sl = spot_slip(w, x);
-      const double near_zero = std::hypot(sl[0], sl[1]) < 0.1 * sc.slip;
+      const bool near_zero = std::hypot(sl[0], sl[1]) < 0.1 * sc.slip;
       if (!implicit && near_zero && stiffness_of(jacobian_at(x)) * h_taken > 2.5) {
         implicit = true;
         calm_steps = 0;
