@@ -200,7 +200,7 @@ TEST(Shimmy, RigidStrutComesToRestInBoundedSteps) {
 }
 
 // A heavier wheel at low speed: after its first oscillations the contact creeps at its
-// friction limit, |s| a few 1e-5 of its scale for most of the run (docs/physics.md §10.8).
+// friction limit, |s| about 1e-4 of its scale for most of the run (docs/physics.md §10.8).
 ShimmyWheel creeping_wheel() {
   ShimmyWheel w = test_wheel();
   w.V = 3.0;
