@@ -162,6 +162,40 @@ TEST(ContactSpot, MatchesTheTwoDimensionalOracleOnEllipsesRectanglesAndMapsTo1e9
             << " s\n";
 }
 
+// Nearly pure sliding: the centre of rotation eps = v/(|omega| R) = 1e3 to 1e16 spot radii away
+// (a rig's spin at the level of its noise, or the towed wheel's slip direction at theta = pi,
+// where omega = sin(pi)/R is a rounding error). Every spot kind and law in turn, kappa, h and
+// h_y random, the slip direction and spin sign random; the same 1e-9 as the sweep above.
+TEST(ContactSpot, NearlyPureSlidingMatchesTheOracleHoweverFarTheCentreOfRotation) {
+  sc::Uniform u(0xfa7ce27e);
+  Worst force{"far centre: production vs oracle, forces / (f N)"};
+  Worst torque{"far centre: production vs oracle, M_z / (f N R)"};
+  const double eps_values[] = {1e3, 3e4, 1e6, 1e9, 1e12, 1e16};
+  for (int i = 0; i < 36; ++i) {
+    const Case c = sweep_case(u, i);
+    const sr::Params p = params_for(u, c);
+    const double eps = eps_values[(i / 3) % 6];  // every spot kind at every distance
+    const double alpha = u.in(0.0, 2.0 * M_PI), v = u.in(0.5, 2.0);
+    sr::Motion m;
+    m.R = u.in(0.02, 0.2);
+    m.N = u.in(100.0, 5000.0);
+    m.v_x = v * std::cos(alpha);
+    m.v_y = v * std::sin(alpha);
+    m.omega = (u.u01() < 0.5 ? -1.0 : 1.0) * v / (eps * m.R);
+    const sr::Result ref = sr::spot_reference(c.ref, p, m);
+    const sr::Result got = production(c, p, m);
+    SCOPED_TRACE("case " + std::to_string(i) + ": " + describe(c.ref, c.law_name, p, m));
+    const double F = p.f * m.N, M = F * m.R;
+    const double ef = std::max(std::fabs(got.T_x - ref.T_x), std::fabs(got.T_y - ref.T_y)) / F;
+    const double et = std::fabs(got.M_z - ref.M_z) / M;
+    force.add(ef);
+    torque.add(et);
+    EXPECT_LT(ef, 1e-9);
+    EXPECT_LT(et, 1e-9);
+    EXPECT_LT(ref.rel_error, 1e-11);
+  }
+}
+
 // The ellipse integrator at Q = 1 against the ring-reduced circle model (no h_y there).
 TEST(ContactSpot, EllipseWithQ1EqualsTheCircleModelTo1e12) {
   sc::Uniform u(0xc11c1e);
