@@ -553,12 +553,18 @@ class SpotIntegralTable {
     return 1;
   }
 
-  // The limit |c| -> inf in direction gamma: e = (sin gamma, -cos gamma) over the whole spot.
-  // (A map's first moments and Axy need not vanish.)
+  // The limit |c| -> inf in direction gamma (sliding_limit_integrals), as channels.
   std::array<double, kChannels> far_limit(double gamma) const {
-    const double s = std::sin(gamma), c = std::cos(gamma);
-    return {s * A0_,  s * Ax_,   s * Ay_,   -c * A0_, -c * Ax_, -c * Ay_,
-            -c * Ax_, -c * Axx_, -c * Axy_, s * Ay_,  s * Axy_, s * Ayy_};
+    const SpotIntegrals f =
+        sliding_limit_integrals(SpotMoments<double>{A0_, Ax_, Ay_, Axx_, Axy_, Ayy_}, gamma);
+    std::array<double, kChannels> v{};
+    for (std::size_t w = 0; w < 3; ++w) {
+      v[w] = f.ex[w];
+      v[3 + w] = f.ey[w];
+      v[6 + w] = f.x_ey[w];
+      v[9 + w] = f.y_ex[w];
+    }
+    return v;
   }
 
   void evaluate(double ax, double ay, double* v) const {

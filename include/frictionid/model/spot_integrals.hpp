@@ -79,6 +79,16 @@ struct SpotIntegrals {
   }
 };
 
+// The integrals at |c| -> inf in direction gamma: the slip direction is e = (sin gamma,
+// -cos gamma) over the whole spot, so each is a moment of sigma0 times a component of e
+// (docs/physics.md §9.3; a map's first moments and Axy need not vanish).
+inline SpotIntegrals sliding_limit_integrals(const SpotMoments<double>& m, double gamma) {
+  const double s = std::sin(gamma), c = std::cos(gamma);
+  const double v[12] = {s * m.A0,  s * m.Ax,   s * m.Ay,   -c * m.A0, -c * m.Ax, -c * m.Ay,
+                        -c * m.Ax, -c * m.Axx, -c * m.Axy, s * m.Ay,  s * m.Axy, s * m.Ayy};
+  return SpotIntegrals::from_channels(v);
+}
+
 // The rules of the two nested integrals. The defaults (tanh-sinh, step 1/8) keep the integrals
 // within ~1e-11 of the spot's scale; fine_rule() in both reaches ~1e-14 at ~5x the cost.
 struct SpotRules {

@@ -50,7 +50,7 @@ class SpotPointIntegrator {
     const double w0 = (t - t2) * (t - t1) / (t2 * t1);
     const double w2 = t * (t - t1) / (t2 * (t2 - t1));
     const double w1 = t * (t - t2) / (t1 * (t1 - t2));
-    SpotIntegrals out = sliding_limit(c, s) * w0;
+    SpotIntegrals out = sliding_limit_integrals(moments_, gamma) * w0;
     out += (*rays_)(c / t2, s / t2) * w2;
     out += (*rays_)(c / t1, s / t1) * w1;
     return out;
@@ -64,15 +64,6 @@ class SpotPointIntegrator {
   static constexpr double kFar = 1e4;  // spot radii beyond which the rays give way (above)
   SpotMoments<double> moments_{1.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   double far_ = HUGE_VAL;
-
-  // |c| -> inf in direction (c, s): the slip direction is e = (s, -c) over the whole spot
-  // (docs/physics.md §9.3; SpotIntegralTable::far_limit).
-  SpotIntegrals sliding_limit(double c, double s) const {
-    const SpotMoments<double>& m = moments_;
-    const double v[12] = {s * m.A0,  s * m.Ax,   s * m.Ay,   -c * m.A0, -c * m.Ax, -c * m.Ay,
-                          -c * m.Ax, -c * m.Axx, -c * m.Axy, s * m.Ay,  s * m.Axy, s * m.Ayy};
-    return SpotIntegrals::from_channels(v);
-  }
 };
 
 }  // namespace frictionid::model
