@@ -44,7 +44,7 @@ class SpotPointIntegrator {
     if (map_strips_) return (*map_strips_)(cx, cy);
     const double r = std::hypot(cx, cy);
     if (!(r > far_)) return (*rays_)(cx, cy);
-    // Lagrange weights on the nodes t = 0, t1/2, t1 (interpolation: all of size <= 1.125).
+    // Lagrange weights on the nodes t = 0, t1/2, t1 (interpolation: each in [-0.125, 1]).
     const double t = r < HUGE_VAL ? 1.0 / r : 0.0, t1 = 1.0 / far_, t2 = 0.5 * t1;
     const double gamma = std::atan2(cy, cx), c = std::cos(gamma), s = std::sin(gamma);
     const double w0 = (t - t2) * (t - t1) / (t2 * t1);
