@@ -555,16 +555,8 @@ class SpotIntegralTable {
 
   // The limit |c| -> inf in direction gamma (sliding_limit_integrals), as channels.
   std::array<double, kChannels> far_limit(double gamma) const {
-    const SpotIntegrals f =
-        sliding_limit_integrals(SpotMoments<double>{A0_, Ax_, Ay_, Axx_, Axy_, Ayy_}, gamma);
-    std::array<double, kChannels> v{};
-    for (std::size_t w = 0; w < 3; ++w) {
-      v[w] = f.ex[w];
-      v[3 + w] = f.ey[w];
-      v[6 + w] = f.x_ey[w];
-      v[9 + w] = f.y_ex[w];
-    }
-    return v;
+    return sliding_limit_integrals(SpotMoments<double>{A0_, Ax_, Ay_, Axx_, Axy_, Ayy_}, gamma)
+        .channels();
   }
 
   void evaluate(double ax, double ay, double* v) const {
@@ -1011,14 +1003,7 @@ class SpotIntegralTable {
       const SpotIntegrals v = t.kind_ == SpotKind::Map ? map_strips(cx, cy)
                               : by_strips              ? strips(cx, cy)
                                                        : integrate(cx, cy);
-      Values out;
-      for (std::size_t w = 0; w < 3; ++w) {
-        out[w] = v.ex[w];
-        out[3 + w] = v.ey[w];
-        out[6 + w] = v.x_ey[w];
-        out[9 + w] = v.y_ex[w];
-      }
-      return out;
+      return v.channels();
     }
 
     // Computes every point the cells still lack (and their check points), in parallel.

@@ -48,6 +48,18 @@ struct SpotIntegrals {
     return out;
   }
 
+  // The twelve values in that order (from_channels' inverse).
+  std::array<double, 12> channels() const {
+    std::array<double, 12> v{};
+    for (std::size_t w = 0; w < 3; ++w) {
+      v[w] = ex[w];
+      v[3 + w] = ey[w];
+      v[6 + w] = x_ey[w];
+      v[9 + w] = y_ex[w];
+    }
+    return v;
+  }
+
   SpotIntegrals& operator+=(const SpotIntegrals& o) {
     for (int w = 0; w < 3; ++w) {
       ex[w] += o.ex[w];
