@@ -162,7 +162,10 @@ class ModelEvaluator {
     }
   }
 
-  model::Resultants<T> operator()(const model::Kinematics& k) const {
+  // k's velocities are doubles, or dual numbers of T itself for derivatives along the
+  // kinematics (the exact variant then needs its table: ring_table_for, spot_with_table).
+  template <typename K = double>
+  model::Resultants<T> operator()(const model::KinematicsT<K>& k) const {
     // A row whose tilt is turned (docs/physics.md §9.2) sees -h.
     const bool turned = k.tilt_sign < 0.0;
     switch (kind_) {

@@ -24,6 +24,7 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
 
 #include <frictionid/model/coefficients.hpp>
 #include <frictionid/model/kinematics.hpp>
@@ -102,18 +103,18 @@ FRICTIONID_MODEL_INLINE EpsFactors<D> eps_factors(const D& eps, const D& inv_eps
   EpsFactors<D> f;
   const auto small = eps <= 1.0;
   f.e2 = eps * eps;
-  f.q = small ? 0.0 : inv_eps;
+  f.q = select<D>(small, 0.0, inv_eps);
   f.inv2 = f.q * f.q;
-  f.y_t0 = small ? f.e2 : 1.0;
-  f.y_t1 = small ? 1.0 : f.inv2;
-  f.f_t = small ? eps : 1.0;
-  f.y_p0 = small ? 1.0 : f.inv2;
-  f.y_p1 = small ? f.e2 : 1.0;
-  f.f_seed = small ? eps : f.q;
-  f.f_corrected = small ? 1.0 : f.q;
-  f.g_e = small ? 1.0 : f.inv2;
-  f.g_f = small ? f.e2 : 1.0;
-  f.g_g = small ? 1.0 : f.q;
+  f.y_t0 = select<D>(small, f.e2, 1.0);
+  f.y_t1 = select<D>(small, 1.0, f.inv2);
+  f.f_t = select<D>(small, eps, 1.0);
+  f.y_p0 = select<D>(small, 1.0, f.inv2);
+  f.y_p1 = select<D>(small, f.e2, 1.0);
+  f.f_seed = select<D>(small, eps, f.q);
+  f.f_corrected = select<D>(small, 1.0, f.q);
+  f.g_e = select<D>(small, 1.0, f.inv2);
+  f.g_f = select<D>(small, f.e2, 1.0);
+  f.g_g = select<D>(small, 1.0, f.q);
   return f;
 }
 
@@ -176,12 +177,16 @@ FRICTIONID_MODEL_INLINE AxisResultants<T> axis_resultants(ApproximantForm form,
 }
 
 // The shape constants are plain doubles: the pressure law of a closed-form fit is fixed, so
-// they never carry derivatives (and autodiff need not pay for them).
-template <typename T>
+// they never carry derivatives (and autodiff need not pay for them). The velocities of k are
+// doubles, or dual numbers of T itself for derivatives along the kinematics.
+template <typename T, typename K = double>
 Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantParams<T>& p,
                                      const ApproximantProducts<T>& pp,
-                                     const ApproximantShape<double>& shape, const Kinematics& k) {
-  const SlipGeometry g = slip_geometry(k);
+                                     const ApproximantShape<double>& shape,
+                                     const KinematicsT<K>& k) {
+  static_assert(std::is_same_v<K, double> || std::is_same_v<K, T>,
+                "kinematics are plain numbers or the parameters' own scalar type");
+  const SlipGeometryT<K> g = slip_geometry(k);
   Resultants<T> r;
   r.M_roll = rolling_moment(p.h, k.N * k.R, shape.rho_roll);
   r.N = T(k.N);
@@ -189,17 +194,22 @@ Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantPara
     r.T_x = r.T_y = r.M_z = T(0);
     return r;
   }
-  const double eps = g.eps, ca = g.cos_alpha, sa = g.sin_alpha, s = g.spin_sign;
-  const EpsFactors<double> ef = eps_factors(eps, g.inv_eps);
-  if (sa == 0.0) {
-    const AxisResultants<T> a = axis_resultants(form, p, pp, ef, axis_row(ef, ca, s, k.N, k.R));
-    r.T_x = a.T_x;
-    r.T_y = a.T_y;
-    r.M_z = a.M_z;
-    return r;
+  const K eps = g.eps, ca = g.cos_alpha, sa = g.sin_alpha;
+  const double s = g.spin_sign;
+  const EpsFactors<K> ef = eps_factors(eps, g.inv_eps);
+  // Slip along x has its own shorter form; a dual-number row takes the general one, which
+  // equals it at sin(alpha) = 0 and carries the derivative off the axis too.
+  if constexpr (std::is_same_v<K, double>) {
+    if (sa == 0.0) {
+      const AxisResultants<T> a = axis_resultants(form, p, pp, ef, axis_row(ef, ca, s, k.N, k.R));
+      r.T_x = a.T_x;
+      r.T_y = a.T_y;
+      r.M_z = a.M_z;
+      return r;
+    }
   }
   const bool small = eps <= 1.0;
-  const double e2 = ef.e2, q = ef.q, inv2 = ef.inv2, f_t = ef.f_t;
+  const K e2 = ef.e2, q = ef.q, inv2 = ef.inv2, f_t = ef.f_t;
   const T y_t = stand_in_y_t(p, ef);
   const T p_hat = stand_in_p_hat(form, p, y_t, ef);
   const T F0 = p.f * k.N;
@@ -214,19 +224,19 @@ Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantPara
   // The tilt stand-ins act only off the principal axis (sin(a) != 0; d12 = 0 otherwise):
   // s_hat = p0 (1 + b_S eps^2)^(-3/2), u_hat = (m2/(4 m3)) eps (1 + c_U eps^2)^(-3/2),
   // x_hat = eps/sqrt(eps^2 + c_X), v_hat = eps/sqrt(eps^2 + c_V); for large eps in q.
-  const std::array<double, 4> y_tilt =
-      small ? std::array<double, 4>{1.0 + shape.b_S * e2, 1.0 + shape.c_U * e2, e2 + shape.c_X,
-                                    e2 + shape.c_V}
-            : std::array<double, 4>{inv2 + shape.b_S, inv2 + shape.c_U, 1.0 + shape.c_X * inv2,
-                                    1.0 + shape.c_V * inv2};
+  const std::array<K, 4> y_tilt =
+      small ? std::array<K, 4>{1.0 + shape.b_S * e2, 1.0 + shape.c_U * e2, e2 + shape.c_X,
+                               e2 + shape.c_V}
+            : std::array<K, 4>{inv2 + shape.b_S, inv2 + shape.c_U, 1.0 + shape.c_X * inv2,
+                               1.0 + shape.c_V * inv2};
   const T t = f_t * inv_sqrt(y_t);
   const T g_hat = f_g * inv_sqrt(y_g);
-  const std::array<double, 4> r_tilt = inv_sqrt_each(y_tilt);
-  const double qs = small ? 1.0 : q * r_tilt[0];
-  const double s_hat = shape.p0_law * (small ? r_tilt[0] * r_tilt[0] * r_tilt[0] : qs * qs * qs);
-  const double u_hat = shape.u_scale * (small ? eps : inv2) * (r_tilt[1] * r_tilt[1] * r_tilt[1]);
-  const double x_hat = (small ? eps : 1.0) * r_tilt[2];
-  const double v_hat = (small ? eps : 1.0) * r_tilt[3];
+  const std::array<K, 4> r_tilt = inv_sqrt_each(y_tilt);
+  const K qs = select<K>(small, 1.0, q * r_tilt[0]);
+  const K s_hat = shape.p0_law * select<K>(small, r_tilt[0] * r_tilt[0] * r_tilt[0], qs * qs * qs);
+  const K u_hat = shape.u_scale * select<K>(small, eps, inv2) * (r_tilt[1] * r_tilt[1] * r_tilt[1]);
+  const K x_hat = select<K>(small, eps, 1.0) * r_tilt[2];
+  const K v_hat = select<K>(small, eps, 1.0) * r_tilt[3];
 
   const T base = t + p.h * (s * sa) * s_hat;
   const T tilt = p.h * (s * ca) * p_hat;
@@ -240,9 +250,10 @@ Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantPara
 }
 
 // The same with the parameter products formed here (one row at a time: tests, references).
-template <typename T>
+template <typename T, typename K = double>
 Resultants<T> approximant_resultants(ApproximantForm form, const ApproximantParams<T>& p,
-                                     const ApproximantShape<double>& shape, const Kinematics& k) {
+                                     const ApproximantShape<double>& shape,
+                                     const KinematicsT<K>& k) {
   return approximant_resultants(form, p, approximant_products(p, shape), shape, k);
 }
 

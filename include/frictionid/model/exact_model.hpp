@@ -30,11 +30,12 @@ struct FrictionParams {
 };
 
 // Combines radial integrals into resultants; shared by the ring quadrature and the fast paths.
-template <typename T, typename I>
-Resultants<T> combine_ring_integrals(const FrictionParams<T>& p, const SlipGeometry& g, const I& P,
-                                     const I& Q, const I& S, const I& U, const I& V, const I& X,
-                                     const T& force_scale, const T& torque_scale) {
-  const double ca = g.cos_alpha, sa = g.sin_alpha, s = g.spin_sign;
+template <typename T, typename I, typename K>
+Resultants<T> combine_ring_integrals(const FrictionParams<T>& p, const SlipGeometryT<K>& g,
+                                     const I& P, const I& Q, const I& S, const I& U, const I& V,
+                                     const I& X, const T& force_scale, const T& torque_scale) {
+  const K ca = g.cos_alpha, sa = g.sin_alpha;
+  const double s = g.spin_sign;
   const T d11 = T(ca * ca) + p.kappa * (sa * sa);
   const T d22 = T(sa * sa) + p.kappa * (ca * ca);
   const T d12 = (p.kappa - T(1)) * (sa * ca);
@@ -90,16 +91,29 @@ class ExactModel {
 
   const LawMoments<T>& moments() const { return moments_; }
 
-  Resultants<T> operator()(const Kinematics& k) const {
+  // k's velocities are doubles, or dual numbers of T itself for derivatives along the
+  // kinematics (docs/physics.md §10.8): those come from the table, so a model built without one
+  // cannot give them.
+  template <typename K = double>
+  Resultants<T> operator()(const KinematicsT<K>& k) const {
+    static_assert(std::is_same_v<K, double> || std::is_same_v<K, T>,
+                  "kinematics are plain numbers or the parameters' own scalar type");
     // A row whose tilt is turned (docs/physics.md §9.2) sees -h and -h_y.
     const FrictionParams<T>& p = k.tilt_sign < 0.0 ? turned_ : p_;
-    const SlipGeometry g = slip_geometry(k);
+    const SlipGeometryT<K> g = slip_geometry(k);
     // c = N/(2 pi R^2 m1) is the pressure scale; forces come in f c R^2, torques in f c R^3.
     const T force_scale = p_.f * k.N / (T(2 * M_PI) * moments_[1]);
     const T torque_scale = force_scale * k.R;
     Resultants<T> r;
     if (g.at_rest) {
       r.T_x = r.T_y = r.M_z = T(0);  // pure rolling: no slip anywhere, no friction to report
+    } else if constexpr (!std::is_same_v<K, double>) {
+      if (!table_)
+        throw std::logic_error(
+            "derivatives along the kinematics need the ring-integral table of the exact model");
+      const RingIntegrals<T> in = table_integrals(g.eps);
+      r = combine_ring_integrals(p, g, in.P, in.Q, in.S, in.U, in.V, in.X, force_scale,
+                                 torque_scale);
     } else if (use_hertz_fast_path(k, g)) {
       const AlignedIntegrals a = hertz_aligned_integrals(g.eps);
       r = combine_ring_integrals(p, g, a.P, a.Q, a.J - a.Q, 0.0, 0.0, 0.0, force_scale,
@@ -139,9 +153,11 @@ class ExactModel {
     return false;
   }
 
-  RingIntegrals<T> table_integrals(double eps) const {
+  // eps is a double, or a dual number of T (then the table's interpolant is differentiated).
+  template <typename E>
+  RingIntegrals<T> table_integrals(const E& eps) const {
     if (!(eps < HUGE_VAL)) return sliding_ring_integrals(moments_);
-    double v[6], s[6];
+    E v[6], s[6];
     if (law_.kind == PressureKind::Power && table_->has_n_slope()) {
       table_->evaluate(eps, v, s);
       // First order in n about the table's exponent: the value is the table's, the derivative

@@ -8,13 +8,19 @@
 namespace frictionid::model {
 
 // Slip velocity of the spot's centre, spin about the normal, normal load, contact radius.
-// Kinematics are data, never identified, so they stay double for every scalar type.
-struct Kinematics {
-  double v_x = 0.0, v_y = 0.0, omega = 0.0, N = 1.0, R = 1.0;
+// Kinematics are data, never identified: a fit's rows are KinematicsT<double> for every scalar
+// type of the parameters. The velocities may be dual numbers instead (K = the parameters' own
+// autodiff type), for the derivatives of the resultants along the kinematics that the towed
+// wheel's implicit steps need (docs/physics.md §10.8); N and R stay plain numbers.
+template <typename K>
+struct KinematicsT {
+  K v_x = K(0), v_y = K(0), omega = K(0);
+  double N = 1.0, R = 1.0;
   // The sign of the pressure tilt on this row: -1 turns sigma0 (1 + h x + h_y y) into
   // sigma0 (1 - h x - h_y y), as when the wheel rolls backwards (docs/physics.md §9.2).
   double tilt_sign = 1.0;
 };
+using Kinematics = KinematicsT<double>;
 
 // Resistance convention (docs/physics.md §1): T = -∫tau dS, M_z = -∫(r x tau).e3 dS,
 // M_roll = ∫ sigma x dS (about y), N = ∫ sigma dS, M_tilt = ∫ sigma y dS (about x; zero
@@ -26,12 +32,15 @@ struct Resultants {
 };
 
 // The slip geometry shared by every model: speed, direction, spin sign and eps = v/(|omega| R).
-struct SlipGeometry {
-  double v, cos_alpha, sin_alpha, spin_sign;
-  double eps;      // v/(|omega| R); +inf for omega = 0
-  double inv_eps;  // 1/eps = |omega| R/v; +inf for v = 0
-  bool at_rest;    // v = omega = 0: friction is indeterminate
+template <typename K>
+struct SlipGeometryT {
+  K v, cos_alpha, sin_alpha;
+  double spin_sign;
+  K eps;         // v/(|omega| R); +inf for omega = 0
+  K inv_eps;     // 1/eps = |omega| R/v; +inf for v = 0
+  bool at_rest;  // v = omega = 0: friction is indeterminate
 };
+using SlipGeometry = SlipGeometryT<double>;
 
 // The slip of a row with v_y = 0 (slip along x, or pure spin), where the direction is exact.
 // D is a double for one row, or a vector of doubles for several rows at once, one per lane (the
@@ -54,30 +63,31 @@ FRICTIONID_MODEL_INLINE AxisSlip<D> axis_slip(const D& v_x, const D& omega, cons
   return s;
 }
 
-inline SlipGeometry slip_geometry(const Kinematics& k) {
-  SlipGeometry g;
+// For plain doubles the same operations as axis_slip() on slip along x, so that one row
+// gets the same bits in the row-by-row and in the packet pass.
+template <typename K>
+SlipGeometryT<K> slip_geometry(const KinematicsT<K>& k) {
+  using std::hypot;
+  using std::sqrt;
+  SlipGeometryT<K> g;
   g.at_rest = k.v_x == 0.0 && k.v_y == 0.0 && k.omega == 0.0;
-  if (k.v_y == 0.0) {
-    const AxisSlip<double> s = axis_slip(k.v_x, k.omega, k.R);
-    g.v = s.v;
-    g.cos_alpha = s.cos_alpha;
-    g.sin_alpha = 0.0;
-    g.spin_sign = s.spin_sign;
-    g.eps = s.eps;
-    g.inv_eps = s.inv_eps;
-    return g;
-  }
-  const double u = std::fabs(k.omega) * k.R;
   g.spin_sign = k.omega > 0.0 ? 1.0 : (k.omega < 0.0 ? -1.0 : 0.0);
-  // hypot guards against overflow at a cost; plain sqrt is exact enough for usual magnitudes.
-  const double big = std::fmax(std::fabs(k.v_x), std::fabs(k.v_y));
-  g.v = big < 1e150 && big > 1e-150 ? std::sqrt(k.v_x * k.v_x + k.v_y * k.v_y)
-                                    : std::hypot(k.v_x, k.v_y);
-  const double inv_v = 1.0 / g.v;
-  g.cos_alpha = k.v_x * inv_v;
-  g.sin_alpha = k.v_y * inv_v;
-  g.eps = u > 0.0 ? g.v / u : HUGE_VAL;
-  g.inv_eps = g.v > 0.0 ? u / g.v : HUGE_VAL;
+  const K u = magnitude(k.omega) * k.R;
+  if (k.v_y == 0.0) {
+    g.v = magnitude(k.v_x);
+    g.cos_alpha = K(k.v_x < 0.0 ? -1.0 : 1.0);  // pure spin: any alpha gives the same forces
+    g.sin_alpha = K(0.0);
+  } else {
+    // hypot guards against overflow at a cost; plain sqrt is exact enough for usual magnitudes.
+    const double big = std::fmax(std::fabs(value_of(k.v_x)), std::fabs(value_of(k.v_y)));
+    g.v = big < 1e150 && big > 1e-150 ? K(sqrt(k.v_x * k.v_x + k.v_y * k.v_y))
+                                      : K(hypot(k.v_x, k.v_y));
+    const K inv_v = 1.0 / g.v;
+    g.cos_alpha = k.v_x * inv_v;
+    g.sin_alpha = k.v_y * inv_v;
+  }
+  g.eps = u > 0.0 ? K(g.v / u) : K(HUGE_VAL);
+  g.inv_eps = g.v > 0.0 ? K(u / g.v) : K(HUGE_VAL);
   return g;
 }
 

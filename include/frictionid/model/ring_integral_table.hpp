@@ -29,6 +29,7 @@
 
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/model/ring_integrals.hpp>
+#include <frictionid/model/scalar_ops.hpp>
 
 namespace frictionid::model {
 
@@ -47,13 +48,15 @@ struct ValueSlope {
 };
 }  // namespace detail
 
-// I_j = g_j(eps) * n_j(eps); n_j for (P, Q, S, U, V, X).
-inline std::array<double, 6> ring_integral_normalisers(double eps) {
+// I_j = g_j(eps) * n_j(eps); n_j for (P, Q, S, U, V, X). E: a double, or a dual number.
+template <typename E>
+std::array<E, 6> ring_integral_normalisers(const E& eps) {
+  using std::sqrt;
   // w = 1/sqrt(1 + eps^2), written to stay finite for huge eps.
-  const double w = eps <= 1.0 ? 1.0 / std::sqrt(1.0 + eps * eps)
-                              : 1.0 / (eps * std::sqrt(1.0 + 1.0 / (eps * eps)));
-  const double slide = eps <= 1.0 ? eps * w : 1.0 / std::sqrt(1.0 + 1.0 / (eps * eps));
-  const double w3 = w * w * w;
+  const E w =
+      eps <= 1.0 ? E(1.0 / sqrt(1.0 + eps * eps)) : E(1.0 / (eps * sqrt(1.0 + 1.0 / (eps * eps))));
+  const E slide = eps <= 1.0 ? E(eps * w) : E(1.0 / sqrt(1.0 + 1.0 / (eps * eps)));
+  const E w3 = w * w * w;
   return {slide, w, w3, slide * w * w, slide, slide};
 }
 
@@ -97,20 +100,23 @@ class RingIntegralTable {
 
   // The six integrals at eps in [0, inf) (P, Q, S, U, V, X), and with slopes their derivatives
   // with respect to n. eps = inf (pure sliding) is the caller's: every integral is a moment.
-  void evaluate(double eps, double* values, double* n_slopes = nullptr) const {
-    const double u = eps > 0.0 ? std::clamp(std::log(eps), kMinLogEps, kMaxLogEps) : kMinLogEps;
-    const auto it = std::upper_bound(starts_.begin(), starts_.end(), u);
+  // eps may be a dual number: the values then carry the interpolant's derivative along it.
+  template <typename E>
+  void evaluate(const E& eps, E* values, E* n_slopes = nullptr) const {
+    using std::log;
+    const E u = eps > 0.0 ? std::clamp(E(log(eps)), E(kMinLogEps), E(kMaxLogEps)) : E(kMinLogEps);
+    const auto it = std::upper_bound(starts_.begin(), starts_.end(), value_of(u));
     const Piece& piece = pieces_[static_cast<std::size_t>(
         std::max<std::ptrdiff_t>(0, std::distance(starts_.begin(), it) - 1))];
-    const double x =
-        std::clamp((2.0 * u - (piece.u0 + piece.u1)) / (piece.u1 - piece.u0), -1.0, 1.0);
+    const E x =
+        std::clamp(E((2.0 * u - (piece.u0 + piece.u1)) / (piece.u1 - piece.u0)), E(-1.0), E(1.0));
     // Clenshaw's recurrence for every channel at once.
-    double b1[kChannels] = {}, b2[kChannels] = {};
+    E b1[kChannels] = {}, b2[kChannels] = {};
     const int channels = slopes_ ? kChannels : 6;
     for (int k = kDegree; k >= 1; --k) {
       const double* c = &piece.coeff[static_cast<std::size_t>(k) * kChannels];
       for (int j = 0; j < channels; ++j) {
-        const double b0 = 2.0 * x * b1[j] - b2[j] + c[j];
+        const E b0 = 2.0 * x * b1[j] - b2[j] + c[j];
         b2[j] = b1[j];
         b1[j] = b0;
       }
@@ -119,7 +125,7 @@ class RingIntegralTable {
     for (int j = 0; j < 6; ++j) values[j] = (x * b1[j] - b2[j] + piece.coeff[j]) * n[j];
     if (n_slopes != nullptr)
       for (int j = 0; j < 6; ++j)
-        n_slopes[j] = slopes_ ? (x * b1[6 + j] - b2[6 + j] + piece.coeff[6 + j]) * n[j] : 0.0;
+        n_slopes[j] = slopes_ ? E((x * b1[6 + j] - b2[6 + j] + piece.coeff[6 + j]) * n[j]) : E(0.0);
   }
 
  private:

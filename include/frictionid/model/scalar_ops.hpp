@@ -52,11 +52,22 @@ T inv_sqrt(const T& x) {
   }
 }
 
+// cond ? a : b as a D: a plain number, a vector of them (cond a lane mask, a or b may be a plain
+// number, broadcast) or a dual number (a plain a or b promoted, with no derivative).
+template <typename D, typename C, typename A, typename B>
+FRICTIONID_MODEL_INLINE D select(const C& cond, const A& a, const B& b) {
+  if constexpr (is_dual_number<D>::value) {
+    return cond ? D(a) : D(b);
+  } else {
+    return cond ? a : b;
+  }
+}
+
 // c + f s for a plain number (or a vector of them) c and s: the models' "T(c) + f * s", which
 // for a dual number costs one product per derivative and no addition of zeros.
 template <typename T, typename D>
 FRICTIONID_MODEL_INLINE T affine(const D& c, const T& f, const D& s) {
-  if constexpr (is_dual_number<T>::value) {
+  if constexpr (is_dual_number<T>::value && !is_dual_number<D>::value) {
     T r = f * s;
     r.a = c + r.a;
     return r;
@@ -78,10 +89,16 @@ FRICTIONID_MODEL_INLINE D magnitude(const D& x) {
 
 // 1/sqrt of every element. A plain loop over doubles: the compiler turns it into packed square
 // roots and divisions, two (or more) per instruction.
-template <std::size_t N>
-std::array<double, N> inv_sqrt_each(const std::array<double, N>& y) {
-  std::array<double, N> r;
-  for (std::size_t i = 0; i < N; ++i) r[i] = 1.0 / std::sqrt(y[i]);
+template <typename E, std::size_t N>
+std::array<E, N> inv_sqrt_each(const std::array<E, N>& y) {
+  std::array<E, N> r;
+  for (std::size_t i = 0; i < N; ++i) {
+    if constexpr (std::is_same_v<E, double>) {
+      r[i] = 1.0 / std::sqrt(y[i]);
+    } else {
+      r[i] = inv_sqrt(y[i]);
+    }
+  }
   return r;
 }
 

@@ -59,8 +59,9 @@ class SpotIntegralCache {
 };
 
 // The centre of rotation of a row with omega != 0, units of R (docs/physics.md §9.3). One
-// function, so that a cache and the model compute the same bits.
-inline std::pair<double, double> rotation_centre(double v_x, double v_y, double omega, double R) {
+// function, so that a cache and the model compute the same bits. K: a double or a dual number.
+template <typename K>
+std::pair<K, K> rotation_centre(const K& v_x, const K& v_y, const K& omega, double R) {
   return {-v_y / (omega * R), v_x / (omega * R)};
 }
 

@@ -92,6 +92,7 @@
 #include <frictionid/model/gauss_legendre_rule.hpp>
 #include <frictionid/model/map_strip_integrator.hpp>
 #include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model/scalar_ops.hpp>
 #include <frictionid/model/spot_integrals.hpp>
 #include <frictionid/model/tanh_sinh_rule.hpp>
 
@@ -298,16 +299,23 @@ class SpotIntegralTable {
 
   // The integrals for the centre of rotation at physical (cx, cy), units of R.
   SpotIntegrals operator()(double cx, double cy) const {
-    double v[kChannels];
+    return SpotIntegrals::from_channels(channels_at(cx, cy).data());
+  }
+
+  // The same as twelve channels (SpotIntegrals::channels()); cx and cy may be dual numbers, and
+  // the channels then carry the interpolant's derivatives along them.
+  template <typename E>
+  std::array<E, kChannels> channels_at(const E& cx, const E& cy) const {
+    std::array<E, kChannels> v;
     if (kind_ == SpotKind::Map) {
-      evaluate(cx, cy, v);  // a map has no symmetry: the whole plane is tabulated
+      evaluate(cx, cy, v.data());  // a map has no symmetry: the whole plane is tabulated
     } else {
-      evaluate(std::fabs(cx), std::fabs(cy), v);
-      const bool fx = std::signbit(cx), fy = std::signbit(cy);
+      evaluate(magnitude(cx), magnitude(cy), v.data());
+      const bool fx = std::signbit(value_of(cx)), fy = std::signbit(value_of(cy));
       for (int j = 0; j < kChannels; ++j)
         if ((fx && kOddX[j]) != (fy && kOddY[j])) v[j] = -v[j];
     }
-    return SpotIntegrals::from_channels(v);
+    return v;
   }
 
   // Whether this table holds the integrals a model of this spot, aspect and law needs (the same
@@ -435,23 +443,30 @@ class SpotIntegralTable {
       if (towards_hi) return hi - (hi - lo) * std::pow(0.5 * (1.0 - s), power);
       return lo + (hi - lo) * std::pow(0.5 * (1.0 + s), power);
     }
-    double s_of(double u) const {
-      if (power == 1) return std::clamp(2.0 * (u - lo) / (hi - lo) - 1.0, -1.0, 1.0);
+    template <typename E>
+    E s_of(const E& u) const {
+      using std::asin;
+      using std::sqrt;
+      if (power == 1) return std::clamp(E(2.0 * (u - lo) / (hi - lo) - 1.0), E(-1.0), E(1.0));
       if (power == 0) {
-        const double from_hi = std::clamp((hi - u) / (hi - lo), 0.0, 1.0);
+        const E from_hi = std::clamp(E((hi - u) / (hi - lo)), E(0.0), E(1.0));
         const bool upper = from_hi <= 0.5;
-        const double w = upper ? from_hi : std::clamp((u - lo) / (hi - lo), 0.0, 1.0);
-        const double x = 1.0 - (4.0 / M_PI) * std::asin(std::sqrt(w));
-        return upper ? x : -x;
+        const E w = upper ? from_hi : std::clamp(E((u - lo) / (hi - lo)), E(0.0), E(1.0));
+        const E x = 1.0 - (4.0 / M_PI) * asin(sqrt(w));
+        return upper ? x : E(-x);
       }
-      if (towards_hi) return 1.0 - 2.0 * root(std::clamp((hi - u) / (hi - lo), 0.0, 1.0));
-      return 2.0 * root(std::clamp((u - lo) / (hi - lo), 0.0, 1.0)) - 1.0;
+      if (towards_hi) return 1.0 - 2.0 * root(std::clamp(E((hi - u) / (hi - lo)), E(0.0), E(1.0)));
+      return 2.0 * root(std::clamp(E((u - lo) / (hi - lo)), E(0.0), E(1.0))) - 1.0;
     }
-    double root(double x) const {
-      if (power == 3) return std::cbrt(x);
-      if (power == 4) return std::sqrt(std::sqrt(x));
-      if (power == 6) return std::sqrt(std::cbrt(x));
-      return std::pow(x, 1.0 / power);
+    template <typename E>
+    E root(const E& x) const {
+      using std::cbrt;
+      using std::pow;
+      using std::sqrt;
+      if (power == 3) return cbrt(x);
+      if (power == 4) return sqrt(sqrt(x));
+      if (power == 6) return sqrt(cbrt(x));
+      return pow(x, 1.0 / power);
     }
   };
 
@@ -511,7 +526,10 @@ class SpotIntegralTable {
   }
 
   // The patch of a centre in the first quadrant (index into patches_), and its coordinates.
-  std::size_t coordinates(double ax, double ay, double& u0, double& u1) const {
+  template <typename E>
+  std::size_t coordinates(const E& ax, const E& ay, E& u0, E& u1) const {
+    using std::atan2;
+    using std::hypot;
     if (kind_ == SpotKind::Map) {
       const Patch& box = patches_[0];
       if (ax >= box.breaks0.front() && ax <= box.breaks0.back() && ay >= box.breaks1.front() &&
@@ -521,25 +539,25 @@ class SpotIntegralTable {
         return 0;
       }
       const Patch& far = patches_[1];
-      const double r = std::hypot(ax - far.x0, ay - far.y0);
-      u0 = r < HUGE_VAL ? 1.0 / r : 0.0;
-      u1 = std::atan2(ay - far.y0, ax - far.x0);
+      const E r = hypot(ax - far.x0, ay - far.y0);
+      u0 = r < HUGE_VAL ? E(1.0 / r) : E(0.0);
+      u1 = atan2(ay - far.y0, ax - far.x0);
       return 1;
     }
     if (kind_ == SpotKind::Ellipse) {
-      const double X = ax, Y = ay / q_, P = std::hypot(X, Y);
+      const E X = ax, Y = ay / q_, P = hypot(X, Y);
       if (P <= near_) {
         u0 = P;
-        u1 = P > 0.0 ? std::atan2(Y, X) : 0.0;
+        u1 = P > 0.0 ? E(atan2(Y, X)) : E(0.0);
         return 0;
       }
     } else if (ax <= near_ && ay <= near_) {
       for (std::size_t i = 2; i < patches_.size(); ++i) {
         const Patch& p = patches_[i];
-        const double dx = ax - p.x0, dy = ay - p.y0;
+        const E dx = ax - p.x0, dy = ay - p.y0;
         if (dx * dx + dy * dy < p.radius * p.radius) {
-          u0 = std::hypot(dx, dy);
-          u1 = u0 > 0.0 ? std::atan2(dy, dx) : 0.0;
+          u0 = hypot(dx, dy);
+          u1 = u0 > 0.0 ? E(atan2(dy, dx)) : E(0.0);
           return i;
         }
       }
@@ -547,9 +565,9 @@ class SpotIntegralTable {
       u1 = ay;
       return 0;
     }
-    const double r = std::hypot(ax, ay);
-    u0 = r < HUGE_VAL ? 1.0 / r : 0.0;
-    u1 = std::atan2(ay, ax);
+    const E r = hypot(ax, ay);
+    u0 = r < HUGE_VAL ? E(1.0 / r) : E(0.0);
+    u1 = atan2(ay, ax);
     return 1;
   }
 
@@ -559,30 +577,33 @@ class SpotIntegralTable {
         .channels();
   }
 
-  void evaluate(double ax, double ay, double* v) const {
-    double u0, u1;
+  template <typename E>
+  void evaluate(const E& ax, const E& ay, E* v) const {
+    E u0, u1;
     const Patch& g = patches_[coordinates(ax, ay, u0, u1)];
-    const std::size_t i0 = locate(g.breaks0, u0), i1 = locate(g.breaks1, u1);
+    const std::size_t i0 = locate(g.breaks0, value_of(u0)), i1 = locate(g.breaks1, value_of(u1));
     const int r = g.roots[i0 * (g.breaks1.size() - 1) + i1];
     if (r < 0) {  // inside a corner's disk by construction; only rounding can land here
-      for (int j = 0; j < kChannels; ++j) v[j] = std::nan("");
+      for (int j = 0; j < kChannels; ++j) v[j] = E(std::nan(""));
       return;
     }
     const Root& root = roots_[static_cast<std::size_t>(r)];
-    const double s0 = root.a0.s_of(u0), s1 = root.a1.s_of(u1);
+    const E s0 = root.a0.s_of(u0), s1 = root.a1.s_of(u1);
     const TreeNode* node = &tree_[static_cast<std::size_t>(root.tree)];
     while (node->dir >= 0)
       node = &tree_[static_cast<std::size_t>(node->child[(node->dir == 0 ? s0 : s1) >= node->mid])];
     const Leaf& leaf = leaves_[static_cast<std::size_t>(node->leaf)];
-    const double x = std::clamp((2.0 * s0 - leaf.a0 - leaf.b0) / (leaf.b0 - leaf.a0), -1.0, 1.0);
-    const double y = std::clamp((2.0 * s1 - leaf.a1 - leaf.b1) / (leaf.b1 - leaf.a1), -1.0, 1.0);
-    double tx[kStoreDegree + 1], ty[kStoreDegree + 1];
+    const E x =
+        std::clamp(E((2.0 * s0 - leaf.a0 - leaf.b0) / (leaf.b0 - leaf.a0)), E(-1.0), E(1.0));
+    const E y =
+        std::clamp(E((2.0 * s1 - leaf.a1 - leaf.b1) / (leaf.b1 - leaf.a1)), E(-1.0), E(1.0));
+    E tx[kStoreDegree + 1], ty[kStoreDegree + 1];
     chebyshev(x, leaf.n0, tx);
     chebyshev(y, leaf.n1, ty);
-    double acc[kChannels] = {};
+    E acc[kChannels] = {};
     const double* c = coeff_.data() + leaf.offset;
     for (int l = 0; l <= leaf.n1; ++l) {
-      double row[kChannels] = {};
+      E row[kChannels] = {};
       const int len = leaf.row_len[static_cast<std::size_t>(l)];
       for (int k = 0; k < len; ++k, c += kChannels)
         for (int j = 0; j < kChannels; ++j) row[j] += tx[k] * c[j];
@@ -596,8 +617,9 @@ class SpotIntegralTable {
     return static_cast<std::size_t>(it - breaks.begin()) - 1;
   }
 
-  static void chebyshev(double x, int n, double* t) {
-    t[0] = 1.0;
+  template <typename E>
+  static void chebyshev(const E& x, int n, E* t) {
+    t[0] = E(1.0);
     if (n >= 1) t[1] = x;
     for (int k = 2; k <= n; ++k) t[k] = 2.0 * x * t[k - 1] - t[k - 2];
   }

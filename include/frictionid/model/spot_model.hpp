@@ -6,12 +6,14 @@
 // f, kappa, h and h_y enter only through sums of precomputed integrals, so they are of any
 // scalar type. The integrals depend on the aspect q and on a power law's exponent n; when those
 // are dual numbers with derivative parts (a fit that frees q or n) their slopes come from central
-// differences of the integrals (relative accuracy ~1e-9, ample for a Jacobian).
+// differences of the integrals (relative accuracy ~1e-9, ample for a Jacobian). Derivatives
+// along the kinematics (velocities that are dual numbers of T) differentiate the spot's table.
 #pragma once
 
 #include <cmath>
 #include <memory>
 #include <stdexcept>
+#include <type_traits>
 
 #include <frictionid/model/contact_spot.hpp>
 #include <frictionid/model/exact_model.hpp>
@@ -116,7 +118,12 @@ class SpotModel {
     if (t && !q_plus_ && !n_plus_ && t->matches(spot_, value_of(q_), law_d)) table_ = t.get();
   }
 
-  Resultants<T> operator()(const Kinematics& k) const {
+  // k's velocities are doubles, or dual numbers of T itself; those need the spot's table
+  // (ContactSpot::table), whose interpolant they differentiate.
+  template <typename K = double>
+  Resultants<T> operator()(const KinematicsT<K>& k) const {
+    static_assert(std::is_same_v<K, double> || std::is_same_v<K, T>,
+                  "kinematics are plain numbers or the parameters' own scalar type");
     if (circle_) return (*circle_)(k);
     if (k.tilt_sign < 0.0) return resultants(k, -p_.h, -p_.h_y);
     return resultants(k, p_.h, p_.h_y);
@@ -141,7 +148,9 @@ class SpotModel {
   }
 
  private:
-  Resultants<T> resultants(const Kinematics& k, const T& h, const T& h_y) const {
+  template <typename K>
+  Resultants<T> resultants(const KinematicsT<K>& k, const T& h, const T& h_y) const {
+    using std::hypot;
     const SpotMoments<T>& A = moments_;
     // c R^2 = N/(A0 + h Ax + h_y Ay): the pressure scale that carries the load N.
     const T load_area = A.A0 + h * A.Ax + h_y * A.Ay;
@@ -157,14 +166,14 @@ class SpotModel {
     }
     if (k.omega == 0.0) {
       // Pure sliding: the slip direction is v/|v| everywhere (docs/physics.md (9.7)).
-      const double v = std::hypot(k.v_x, k.v_y), ux = k.v_x / v, uy = k.v_y / v;
+      const K v = hypot(k.v_x, k.v_y), ux = k.v_x / v, uy = k.v_y / v;
       r.T_x = p_.f * k.N * ux;
       r.T_y = p_.f * p_.kappa * k.N * uy;
       r.M_z = p_.f * (p_.kappa * uy * r.M_roll - ux * r.M_tilt);
       return r;
     }
     const auto [cx, cy] = rotation_centre(k.v_x, k.v_y, k.omega, k.R);
-    const SpotIntegralsT<T> I = integrals(cx, cy);
+    const SpotIntegralsT<T> I = centre_integrals(cx, cy);
     const double s = k.omega > 0.0 ? 1.0 : -1.0;
     const T force = p_.f * scale * s, torque = force * k.R;
     r.T_x = force * (I.ex[0] + h * I.ex[1] + h_y * I.ex[2]);
@@ -172,6 +181,24 @@ class SpotModel {
     r.M_z = torque * (p_.kappa * (I.x_ey[0] + h * I.x_ey[1] + h_y * I.x_ey[2]) -
                       (I.y_ex[0] + h * I.y_ex[1] + h_y * I.y_ex[2]));
     return r;
+  }
+
+  SpotIntegralsT<T> centre_integrals(double cx, double cy) const { return integrals(cx, cy); }
+
+  // A centre that is a dual number: the table's interpolant differentiated.
+  template <typename K>
+  SpotIntegralsT<T> centre_integrals(const K& cx, const K& cy) const {
+    if (!table_)
+      throw std::logic_error("derivatives along the kinematics need the spot's integral table");
+    const std::array<K, 12> v = table_->template channels_at<K>(cx, cy);
+    SpotIntegralsT<T> out;
+    for (std::size_t w = 0; w < 3; ++w) {
+      out.ex[w] = v[w];
+      out.ey[w] = v[3 + w];
+      out.x_ey[w] = v[6 + w];
+      out.y_ex[w] = v[9 + w];
+    }
+    return out;
   }
 
   static PressureLaw<double> value_law(const PressureLaw<T>& law) {
