@@ -1,10 +1,12 @@
 #include "app/shimmy.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <iterator>
 #include <utility>
 
+#include <ceres/jet.h>
 #include <fmt/format.h>
 
 #include <frictionid/io/input_error.hpp>
@@ -67,15 +69,60 @@ void check(const ShimmyRequest& r) {
 
 }  // namespace
 
+// The friction of one model, spot, law and parameter set, with its derivative along the
+// kinematics by forward-mode automatic differentiation: the same evaluator instantiated with a
+// one-direction dual number (docs/physics.md §10.8).
 struct ShimmyCase::Friction {
+  using Dual = ceres::Jet<double, 1>;
   struct Model {
     ModelEvaluator<double> eval;
+    ModelEvaluator<Dual> dual;
     model::Resultants<double> operator()(const model::Kinematics& k) const { return eval(k); }
+    model::ContactForces slip_slope(const model::Kinematics& k, const model::Kinematics& dk) const {
+      const auto seeded = [](double x, double dx) {
+        Dual d(x);
+        d.v[0] = dx;
+        return d;
+      };
+      const model::KinematicsT<Dual> kd{seeded(k.v_x, dk.v_x),
+                                        seeded(k.v_y, dk.v_y),
+                                        seeded(k.omega, dk.omega),
+                                        k.N,
+                                        k.R,
+                                        k.tilt_sign};
+      const model::Resultants<Dual> r = dual(kd);
+      return {r.T_x.v[0], r.T_y.v[0], r.M_z.v[0]};
+    }
   };
-  explicit Friction(ModelEvaluator<double> e) : model{std::move(e)} {}
+  Friction(ModelEvaluator<double> e, ModelEvaluator<Dual> d) : model{std::move(e), std::move(d)} {}
   Model model;
   std::unique_ptr<model::SlipDirectionTable<Model>> table;
 };
+
+namespace {
+
+// The exact model's integrals tabulated, as the friction's derivatives need (they differentiate
+// the table's interpolant) and as a run's 1e4-1e6 evaluations want (0.1-0.5 us each instead of
+// 3-500 us): the ring integrals of the circle, any law (the ring law's too), or the spot's table.
+struct ShimmyTables {
+  std::shared_ptr<const model::RingIntegralTable> ring;
+  model::ContactSpot spot;
+};
+
+ShimmyTables shimmy_tables(const ModelSetup& s) {
+  ShimmyTables t{nullptr, s.contact};
+  if (s.kind != ModelKind::Exact) return t;
+  if (s.contact.kind != model::SpotKind::Circle) {
+    t.spot = spot_with_table(s.kind, s.law, s.params[kQ], s.params[kN], s.contact);
+    return t;
+  }
+  model::PressureLaw<double> at = s.law;
+  if (at.kind == model::PressureKind::Power) at.n = s.params[kN];
+  t.ring = std::make_shared<const model::RingIntegralTable>(at);
+  return t;
+}
+
+}  // namespace
 
 ShimmyCase::ShimmyCase(const ShimmyRequest& r) {
   setup_ = make_model_setup(shimmy_model_request(r));
@@ -103,14 +150,16 @@ ShimmyCase::ShimmyCase(const ShimmyRequest& r) {
   start_.y = wheel_.rigid_lateral ? 0.0 : r.y0;
   start_.psi = r.psi0;
   table_directions_ = r.table_directions;
-  // A tabulated law is integrated from its ring-integral table, as simulate does.
   const ModelSetup& s = setup_;
+  const ShimmyTables tables = shimmy_tables(s);
+  std::array<Friction::Dual, kParamCount> dual_params;
+  for (int i = 0; i < kParamCount; ++i)
+    dual_params[static_cast<std::size_t>(i)] =
+        Friction::Dual(s.params[static_cast<std::size_t>(i)]);
   friction_ = std::make_unique<Friction>(
-      ModelEvaluator<double>(s.kind, s.law, s.params.data(),
-                             s.law.kind == model::PressureKind::Table
-                                 ? ring_table_for(s.kind, s.law, s.params[kN], false, {}, s.contact)
-                                 : nullptr,
-                             nullptr, s.contact));
+      ModelEvaluator<double>(s.kind, s.law, s.params.data(), tables.ring, nullptr, tables.spot),
+      ModelEvaluator<Friction::Dual>(s.kind, s.law, dual_params.data(), tables.ring, nullptr,
+                                     tables.spot));
   // --table-directions: the friction at v_x = 0 over the slip direction, built once.
   if (r.table_directions > 0)
     friction_->table = std::make_unique<model::SlipDirectionTable<Friction::Model>>(

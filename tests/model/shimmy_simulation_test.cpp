@@ -5,15 +5,18 @@
 // constraint kept; rows of the dense output at k dt.
 #include <frictionid/model/shimmy_simulation.hpp>
 
+#include <ceres/jet.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include <frictionid/model/exact_model.hpp>
 #include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model/ring_integral_table.hpp>
 #include <frictionid/model/spot_model.hpp>
 
 namespace {
@@ -38,9 +41,32 @@ ShimmyWheel test_wheel(bool rigid = false) {
   return w;
 }
 
+// The friction's derivative along the kinematics, as the application layer gives it: the model
+// with dual-number velocities (docs/physics.md §10.8).
+using Dual = ceres::Jet<double, 1>;
+
+template <typename Model>
+ContactForces dual_slope(const Model& model, const Kinematics& k, const Kinematics& dk) {
+  const auto seeded = [](double x, double dx) {
+    Dual d(x);
+    d.v[0] = dx;
+    return d;
+  };
+  const Resultants<Dual> r = model(KinematicsT<Dual>{seeded(k.v_x, dk.v_x), seeded(k.v_y, dk.v_y),
+                                                     seeded(k.omega, dk.omega), k.N, k.R});
+  return {r.T_x.v[0], r.T_y.v[0], r.M_z.v[0]};
+}
+
+// Values by the radial quadrature, derivatives from the ring-integral table.
 struct UniformExact {
   ExactModel<double> model{{kF, 1.0, 0.0}, PressureLaw<double>::uniform()};
+  ExactModel<Dual> dual{{Dual(kF), Dual(1.0), Dual(0.0)},
+                        PressureLaw<Dual>::uniform(),
+                        std::make_shared<const RingIntegralTable>(PressureLaw<double>::uniform())};
   Resultants<double> operator()(const Kinematics& k) const { return model(k); }
+  ContactForces slip_slope(const Kinematics& k, const Kinematics& dk) const {
+    return dual_slope(dual, k, dk);
+  }
 };
 
 // The second implementation: the equations of motion (10.1)-(10.2) written out again as the
@@ -255,10 +281,20 @@ TEST(Shimmy, OnAnEllipseTheCreepEndsHoldingWithoutChatter) {
   // pure sliding with a spin at rounding level, where the ellipse's rays once returned zero
   // forces; the cohesion test then saw a hole in the limit set and the run chattered through
   // 550,000 slip starts (docs/physics.md §9.3, far centres).
+  // Values by the ray integration, derivatives from the spot's table.
   struct EllipseExact {
     SpotModel<double> model{SpotParams<double>{kF, 1.0, 0.0, 0.0, 0.6},
                             PressureLaw<double>::hertz(), ContactSpot::ellipse(0.6)};
+    SpotModel<Dual> dual{SpotParams<Dual>{Dual(kF), Dual(1.0), Dual(0.0), Dual(0.0), Dual(0.6)},
+                         PressureLaw<Dual>::hertz(), tabulated(ContactSpot::ellipse(0.6))};
+    static ContactSpot tabulated(ContactSpot s) {
+      s.table = std::make_shared<const SpotIntegralTable>(s, PressureLaw<double>::hertz(), 0.6);
+      return s;
+    }
     Resultants<double> operator()(const Kinematics& k) const { return model(k); }
+    ContactForces slip_slope(const Kinematics& k, const Kinematics& dk) const {
+      return dual_slope(dual, k, dk);
+    }
   };
   ShimmySettings set;
   set.duration = 1.0;

@@ -42,15 +42,14 @@ class ShimmyLimitCurve {
     return {r.T_x, r.T_y, r.M_z};
   }
 
-  // d(T_x, T_y, M_z)/d theta at theta, by a central difference of the model: the models
-  // differentiate with respect to their parameters, not the kinematics (docs/physics.md §1), and
-  // the implicit steps of §10.8 need the slope only for their Jacobian (the difference is
-  // good to about 1e-10 relative where the forces are smooth in theta).
+  // d(T_x, T_y, M_z)/d theta at theta, from the friction's own derivative along the kinematics
+  // (its slip_slope: the model's automatic derivative, docs/physics.md §10.8), in the direction
+  // d/d theta of (v_y, omega R) = (cos theta, sin theta).
   template <typename Friction>
   ContactForces slope(const Friction& friction, double th) const {
-    constexpr double d = 0x1p-20;
-    const ContactForces a = at(friction, th + d), b = at(friction, th - d);
-    return {(a.T_x - b.T_x) / (2.0 * d), (a.T_y - b.T_y) / (2.0 * d), (a.M_z - b.M_z) / (2.0 * d)};
+    const Kinematics k{0.0, std::cos(th), std::sin(th) / R_, N_, R_};
+    const Kinematics dk{0.0, -std::sin(th), std::cos(th) / R_, N_, R_};
+    return friction.slip_slope(k, dk);
   }
 
   // D(theta) - W.d(theta) for the load W = (T_y, M_z/R).

@@ -147,8 +147,9 @@ inline int sign_of(double x) {
 
 }  // namespace detail
 
-// friction: Kinematics -> Resultants<double>, any model; row: called with each ShimmyRow when
-// settings.record.
+// friction: Kinematics -> Resultants<double>, any model, with
+// slip_slope(k, dk) -> ContactForces, its derivative along dk (the model's automatic derivative,
+// for the implicit steps' Jacobian, §10.8); row: called with each ShimmyRow when settings.record.
 template <typename Friction, typename RowSink>
 ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const ShimmyStart& start,
                           const ShimmySettings& set, RowSink&& row) {
@@ -383,7 +384,7 @@ ShimmyRun simulate_shimmy(const Friction& friction, const ShimmyWheel& w, const 
     const ContactForces F = forces_of(s);
     ContactForces dF{};
     if (!held_here && sn > 0.0) {
-      run.evaluations += 2;
+      run.evaluations += 1;
       dF = curve.slope(friction, std::atan2(sl[1], sl[0]));
     }
     J_cached = shimmy_jacobian(w, s, F, dF);
