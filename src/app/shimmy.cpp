@@ -79,18 +79,7 @@ struct ShimmyCase::Friction {
     ModelEvaluator<Dual> dual;
     model::Resultants<double> operator()(const model::Kinematics& k) const { return eval(k); }
     model::ContactForces slip_slope(const model::Kinematics& k, const model::Kinematics& dk) const {
-      const auto seeded = [](double x, double dx) {
-        Dual d(x);
-        d.v[0] = dx;
-        return d;
-      };
-      const model::KinematicsT<Dual> kd{seeded(k.v_x, dk.v_x),
-                                        seeded(k.v_y, dk.v_y),
-                                        seeded(k.omega, dk.omega),
-                                        k.N,
-                                        k.R,
-                                        k.tilt_sign};
-      const model::Resultants<Dual> r = dual(kd);
+      const model::Resultants<Dual> r = dual(model::kinematics_along<Dual>(k, dk));
       return {r.T_x.v[0], r.T_y.v[0], r.M_z.v[0]};
     }
   };

@@ -44,18 +44,8 @@ model::Resultants<Dual> dual(const Case& c, const std::array<double, kParamCount
                              const model::Kinematics& k, const model::Kinematics& dk) {
   std::array<Dual, kParamCount> pd;
   for (int i = 0; i < kParamCount; ++i) pd[static_cast<std::size_t>(i)] = Dual(p[i]);
-  const auto seeded = [](double x, double dx) {
-    Dual d(x);
-    d.v[0] = dx;
-    return d;
-  };
-  const model::KinematicsT<Dual> kd{seeded(k.v_x, dk.v_x),
-                                    seeded(k.v_y, dk.v_y),
-                                    seeded(k.omega, dk.omega),
-                                    k.N,
-                                    k.R,
-                                    k.tilt_sign};
-  return ModelEvaluator<Dual>(c.kind, c.law, pd.data(), c.ring, nullptr, c.spot)(kd);
+  return ModelEvaluator<Dual>(c.kind, c.law, pd.data(), c.ring, nullptr,
+                              c.spot)(model::kinematics_along<Dual>(k, dk));
 }
 
 std::array<double, 3> forces(const model::Resultants<double>& r) {

@@ -47,13 +47,7 @@ using Dual = ceres::Jet<double, 1>;
 
 template <typename Model>
 ContactForces dual_slope(const Model& model, const Kinematics& k, const Kinematics& dk) {
-  const auto seeded = [](double x, double dx) {
-    Dual d(x);
-    d.v[0] = dx;
-    return d;
-  };
-  const Resultants<Dual> r = model(KinematicsT<Dual>{seeded(k.v_x, dk.v_x), seeded(k.v_y, dk.v_y),
-                                                     seeded(k.omega, dk.omega), k.N, k.R});
+  const Resultants<Dual> r = model(kinematics_along<Dual>(k, dk));
   return {r.T_x.v[0], r.T_y.v[0], r.M_z.v[0]};
 }
 

@@ -22,6 +22,23 @@ struct KinematicsT {
 };
 using Kinematics = KinematicsT<double>;
 
+// k with velocities that are dual numbers (a Jet with one derivative part) seeded with the
+// direction dk: a model evaluated at it gives its resultants and their derivatives along dk.
+template <typename Dual>
+KinematicsT<Dual> kinematics_along(const Kinematics& k, const Kinematics& dk) {
+  const auto seeded = [](double x, double dx) {
+    Dual d(x);
+    d.v[0] = dx;
+    return d;
+  };
+  return {seeded(k.v_x, dk.v_x),
+          seeded(k.v_y, dk.v_y),
+          seeded(k.omega, dk.omega),
+          k.N,
+          k.R,
+          k.tilt_sign};
+}
+
 // Resistance convention (docs/physics.md §1): T = -∫tau dS, M_z = -∫(r x tau).e3 dS,
 // M_roll = ∫ sigma x dS (about y), N = ∫ sigma dS, M_tilt = ∫ sigma y dS (about x; zero
 // unless the pressure tilts across the rolling direction, docs/physics.md §9.2).
