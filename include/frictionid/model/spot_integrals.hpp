@@ -28,6 +28,21 @@
 
 namespace frictionid::model {
 
+// Twelve values in the order ex[0..2], ey[0..2], x_ey[0..2], y_ex[0..2] (the channels of the
+// strip integrators' accumulators and of the table) into any struct with those four triples:
+// SpotIntegrals, or the model's SpotIntegralsT of a dual number.
+template <typename Integrals, typename V>
+Integrals integrals_from_channels(const V* v) {
+  Integrals out;
+  for (std::size_t w = 0; w < 3; ++w) {
+    out.ex[w] = v[w];
+    out.ey[w] = v[3 + w];
+    out.x_ey[w] = v[6 + w];
+    out.y_ex[w] = v[9 + w];
+  }
+  return out;
+}
+
 // With e = e3 x (r - c)/|r - c| = (-(y - c_y), x - c_x)/|r - c| and the weights
 // w = sigma0 * {1, x, y} (index 0, 1, 2):
 //   ex[w] = ∫ w e_x dA, ey[w] = ∫ w e_y dA, x_ey[w] = ∫ w x e_y dA, y_ex[w] = ∫ w y e_x dA,
@@ -35,17 +50,9 @@ namespace frictionid::model {
 struct SpotIntegrals {
   std::array<double, 3> ex{}, ey{}, x_ey{}, y_ex{};
 
-  // From twelve values in the order ex[0..2], ey[0..2], x_ey[0..2], y_ex[0..2] (the channels of
-  // the strip integrators' accumulators and of the table).
+  // From twelve channels in the order of integrals_from_channels.
   static SpotIntegrals from_channels(const double* v) {
-    SpotIntegrals out;
-    for (std::size_t w = 0; w < 3; ++w) {
-      out.ex[w] = v[w];
-      out.ey[w] = v[3 + w];
-      out.x_ey[w] = v[6 + w];
-      out.y_ex[w] = v[9 + w];
-    }
-    return out;
+    return integrals_from_channels<SpotIntegrals>(v);
   }
 
   // The twelve values in that order (from_channels' inverse).

@@ -191,14 +191,7 @@ class SpotModel {
     if (!table_)
       throw std::logic_error("derivatives along the kinematics need the spot's integral table");
     const std::array<K, 12> v = table_->template channels_at<K>(cx, cy);
-    SpotIntegralsT<T> out;
-    for (std::size_t w = 0; w < 3; ++w) {
-      out.ex[w] = v[w];
-      out.ey[w] = v[3 + w];
-      out.x_ey[w] = v[6 + w];
-      out.y_ex[w] = v[9 + w];
-    }
-    return out;
+    return integrals_from_channels<SpotIntegralsT<T>>(v.data());
   }
 
   static PressureLaw<double> value_law(const PressureLaw<T>& law) {
