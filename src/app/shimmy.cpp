@@ -99,16 +99,14 @@ struct ShimmyTables {
 };
 
 ShimmyTables shimmy_tables(const ModelSetup& s) {
-  ShimmyTables t{nullptr, s.contact};
-  if (s.kind != ModelKind::Exact) return t;
-  if (s.contact.kind != model::SpotKind::Circle) {
-    t.spot = spot_with_table(s.kind, s.law, s.params[kQ], s.params[kN], s.contact);
-    return t;
-  }
-  model::PressureLaw<double> at = s.law;
-  if (at.kind == model::PressureKind::Power) at.n = s.params[kN];
-  t.ring = std::make_shared<const model::RingIntegralTable>(at);
-  return t;
+  if (s.kind != ModelKind::Exact) return {nullptr, s.contact};
+  if (s.contact.kind != model::SpotKind::Circle)
+    return {nullptr, spot_with_table(s.kind, s.law, s.params[kQ], s.params[kN], s.contact)};
+  // ring_table_for leaves the ring law out (its values are kernels, as cheap as a table); its
+  // derivatives need the table all the same.
+  if (s.law.kind == model::PressureKind::Ring)
+    return {std::make_shared<const model::RingIntegralTable>(s.law), s.contact};
+  return {ring_table_for(s.kind, s.law, s.params[kN], false, {}, s.contact), s.contact};
 }
 
 }  // namespace

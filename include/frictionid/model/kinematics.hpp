@@ -62,7 +62,7 @@ using SlipGeometry = SlipGeometryT<double>;
 // The slip of a row with v_y = 0 (slip along x, or pure spin), where the direction is exact.
 // D is a double for one row, or a vector of doubles for several rows at once, one per lane (the
 // packet pass, src/identify/aligned_row_packets.hpp): the same expressions give each lane the
-// bits of its row.
+// bits of its row. Or a dual number, for derivatives along the kinematics.
 template <typename D>
 struct AxisSlip {
   D v, cos_alpha, spin_sign, eps, inv_eps;
@@ -73,38 +73,40 @@ FRICTIONID_MODEL_INLINE AxisSlip<D> axis_slip(const D& v_x, const D& omega, cons
   AxisSlip<D> s;
   const D u = magnitude(omega) * R;
   s.v = magnitude(v_x);
-  s.cos_alpha = v_x < 0.0 ? -1.0 : 1.0;  // pure spin: any alpha gives the same forces
-  s.spin_sign = omega > 0.0 ? 1.0 : (omega < 0.0 ? -1.0 : 0.0);
-  s.eps = u > 0.0 ? s.v / u : HUGE_VAL;
-  s.inv_eps = s.v > 0.0 ? u / s.v : HUGE_VAL;
+  s.cos_alpha = select<D>(v_x < 0.0, -1.0, 1.0);  // pure spin: any alpha gives the same forces
+  s.spin_sign = select<D>(omega > 0.0, 1.0, select<D>(omega < 0.0, -1.0, 0.0));
+  s.eps = select<D>(u > 0.0, s.v / u, HUGE_VAL);
+  s.inv_eps = select<D>(s.v > 0.0, u / s.v, HUGE_VAL);
   return s;
 }
 
-// For plain doubles the same operations as axis_slip() on slip along x, so that one row
-// gets the same bits in the row-by-row and in the packet pass.
 template <typename K>
 SlipGeometryT<K> slip_geometry(const KinematicsT<K>& k) {
   using std::hypot;
   using std::sqrt;
   SlipGeometryT<K> g;
   g.at_rest = k.v_x == 0.0 && k.v_y == 0.0 && k.omega == 0.0;
-  g.spin_sign = k.omega > 0.0 ? 1.0 : (k.omega < 0.0 ? -1.0 : 0.0);
-  const K u = magnitude(k.omega) * k.R;
   if (k.v_y == 0.0) {
-    g.v = magnitude(k.v_x);
-    g.cos_alpha = K(k.v_x < 0.0 ? -1.0 : 1.0);  // pure spin: any alpha gives the same forces
+    const AxisSlip<K> s = axis_slip(k.v_x, k.omega, K(k.R));
+    g.v = s.v;
+    g.cos_alpha = s.cos_alpha;
     g.sin_alpha = K(0.0);
-  } else {
-    // hypot guards against overflow at a cost; plain sqrt is exact enough for usual magnitudes.
-    const double big = std::fmax(std::fabs(value_of(k.v_x)), std::fabs(value_of(k.v_y)));
-    g.v = big < 1e150 && big > 1e-150 ? K(sqrt(k.v_x * k.v_x + k.v_y * k.v_y))
-                                      : K(hypot(k.v_x, k.v_y));
-    const K inv_v = 1.0 / g.v;
-    g.cos_alpha = k.v_x * inv_v;
-    g.sin_alpha = k.v_y * inv_v;
+    g.spin_sign = value_of(s.spin_sign);
+    g.eps = s.eps;
+    g.inv_eps = s.inv_eps;
+    return g;
   }
-  g.eps = u > 0.0 ? K(g.v / u) : K(HUGE_VAL);
-  g.inv_eps = g.v > 0.0 ? K(u / g.v) : K(HUGE_VAL);
+  const K u = magnitude(k.omega) * k.R;
+  g.spin_sign = k.omega > 0.0 ? 1.0 : (k.omega < 0.0 ? -1.0 : 0.0);
+  // hypot guards against overflow at a cost; plain sqrt is exact enough for usual magnitudes.
+  const double big = std::fmax(std::fabs(value_of(k.v_x)), std::fabs(value_of(k.v_y)));
+  g.v =
+      big < 1e150 && big > 1e-150 ? K(sqrt(k.v_x * k.v_x + k.v_y * k.v_y)) : K(hypot(k.v_x, k.v_y));
+  const K inv_v = 1.0 / g.v;
+  g.cos_alpha = k.v_x * inv_v;
+  g.sin_alpha = k.v_y * inv_v;
+  g.eps = select<K>(u > 0.0, g.v / u, HUGE_VAL);
+  g.inv_eps = select<K>(g.v > 0.0, u / g.v, HUGE_VAL);
   return g;
 }
 

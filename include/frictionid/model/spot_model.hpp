@@ -173,7 +173,7 @@ class SpotModel {
       return r;
     }
     const auto [cx, cy] = rotation_centre(k.v_x, k.v_y, k.omega, k.R);
-    const SpotIntegralsT<T> I = centre_integrals(cx, cy);
+    const SpotIntegralsT<T> I = integrals(cx, cy);
     const double s = k.omega > 0.0 ? 1.0 : -1.0;
     const T force = p_.f * scale * s, torque = force * k.R;
     r.T_x = force * (I.ex[0] + h * I.ex[1] + h_y * I.ex[2]);
@@ -183,11 +183,10 @@ class SpotModel {
     return r;
   }
 
-  SpotIntegralsT<T> centre_integrals(double cx, double cy) const { return integrals(cx, cy); }
-
-  // A centre that is a dual number: the table's interpolant differentiated.
+  // A centre that is a dual number: the table's interpolant differentiated (doubles take the
+  // public integrals() above).
   template <typename K>
-  SpotIntegralsT<T> centre_integrals(const K& cx, const K& cy) const {
+  SpotIntegralsT<T> integrals(const K& cx, const K& cy) const {
     if (!table_)
       throw std::logic_error("derivatives along the kinematics need the spot's integral table");
     const std::array<K, 12> v = table_->template channels_at<K>(cx, cy);
