@@ -91,12 +91,17 @@ inline std::shared_ptr<const model::RingIntegralTable> ring_table_for_rows(
 
 // Rows from which a tabulated spot (spot_integral_table.hpp) beats integrating every row: an
 // ellipse's or a rectangle's build costs about as much as 1000 rows integrated (0.05-0.4 s of
-// CPU time); a map's as much as 100,000 (3 s for a 13 x 9 map, whose rows integrate in 35 us).
+// CPU time); a map's as much as 100,000 (3 s for a 13 x 9 map, whose rows integrate in 35 us),
+// and so does a table law's (4-18 s: its every sample is a line the table's cells resolve, where
+// its rows integrate in 0.1-0.5 ms).
 inline constexpr std::size_t kSpotTableMinRows = 2000;
 inline constexpr std::size_t kMapTableMinRows = 100000;
 
-inline std::size_t spot_table_min_rows(const model::ContactSpot& spot) {
-  return spot.kind == model::SpotKind::Map ? kMapTableMinRows : kSpotTableMinRows;
+inline std::size_t spot_table_min_rows(const model::ContactSpot& spot,
+                                       const model::PressureLaw<double>& law) {
+  return spot.kind == model::SpotKind::Map || law.kind == model::PressureKind::Table
+             ? kMapTableMinRows
+             : kSpotTableMinRows;
 }
 
 // The spot with its integrals tabulated for the exact variant at aspect q and exponent n (power
@@ -119,7 +124,7 @@ inline model::ContactSpot spot_with_table(ModelKind kind, const model::PressureL
 inline model::ContactSpot spot_for_rows(ModelKind kind, const model::PressureLaw<double>& law,
                                         double q, double n, std::size_t rows,
                                         const model::ContactSpot& spot) {
-  return rows >= spot_table_min_rows(spot) ? spot_with_table(kind, law, q, n, spot) : spot;
+  return rows >= spot_table_min_rows(spot, law) ? spot_with_table(kind, law, q, n, spot) : spot;
 }
 
 // Evaluates one variant for a fixed parameter vector; construct once, call per row.

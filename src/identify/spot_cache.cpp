@@ -28,7 +28,7 @@ std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(
   // 0.05-0.4 s of CPU time, a map seconds) and read every row from it (~0.3-0.5 us) instead of
   // integrating each (30-300 us). The table stays within 3e-11 of the load of the integrals.
   std::unique_ptr<const model::SpotIntegralTable> table;
-  if (rows >= spot_table_min_rows(s.contact)) {
+  if (rows >= spot_table_min_rows(s.contact, law)) {
     try {
       table = std::make_unique<const model::SpotIntegralTable>(
           s.contact, law, q, stop,

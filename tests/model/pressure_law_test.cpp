@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -280,6 +281,78 @@ TEST(PressureTable, RejectsAllZeroSigma0) {
 TEST(PressureTable, RejectsMismatchedOrTooShortInput) {
   expect_invalid({0.0, 0.5, 1.0}, {1, 1}, "length mismatch");
   expect_invalid({0.5}, {1}, "one sample");
+}
+
+// The slope the layers of an ellipse integrate (ellipse_law_integrator.hpp): dsigma0/drho
+// against 4th-order central differences of the law itself, away from its samples, for the
+// closed forms, a table with an edge exponent and a table with a step.
+TEST(PressureLaw, ItsSlopeIsTheDerivativeOfTheLawBetweenBreakpoints) {
+  std::vector<double> rho = {0.0, 0.2, 0.45, 0.7, 0.9, 1.0}, sig = {1.0, 0.9, 1.1, 0.6, 0.35, 0.0};
+  const auto edged = std::make_shared<const PressureTable>(rho, sig);
+  ASSERT_GT(edged->gamma(), 0.0);
+  const auto stepped =
+      std::make_shared<const PressureTable>(std::vector<double>{0.0, 0.3, 0.5, 0.5, 0.8, 1.0},
+                                            std::vector<double>{0.2, 0.4, 0.3, 1.0, 0.9, 0.5});
+  const std::vector<PressureLaw<double>> laws = {
+      PressureLaw<double>::hertz(),          PressureLaw<double>::parabolic(),
+      PressureLaw<double>::power(0.3),       PressureLaw<double>::power(2.5),
+      PressureLaw<double>::tabulated(edged), PressureLaw<double>::tabulated(stepped)};
+  std::mt19937_64 g(17);
+  std::uniform_real_distribution<double> u(0.01, 0.97);
+  for (const auto& law : laws)
+    for (int i = 0; i < 200; ++i) {
+      const double r = u(g), h = 1e-4;
+      bool near_break = false;
+      for (double b : law.breakpoints()) near_break = near_break || std::fabs(r - b) < 3 * h;
+      if (near_break) continue;
+      auto at = [&](double x) { return law(x, 1.0 - x); };
+      const double fd = (at(r - 2 * h) - 8 * at(r - h) + 8 * at(r + h) - at(r + 2 * h)) / (12 * h);
+      EXPECT_NEAR(law_slope(law, r, 1.0 - r), fd, 1e-8 * std::max(1.0, std::fabs(fd)))
+          << pressure_name(law.kind) << " at " << r;
+    }
+}
+
+// Its steps: where sigma0 jumps and by how much it drops there, as the law itself says just
+// inside and just outside.
+TEST(PressureLaw, ItsJumpsAreTheDropsOfTheLawAtItsSteps) {
+  const auto table = std::make_shared<const PressureTable>(
+      std::vector<double>{0.0, 0.3, 0.5, 0.5, 0.8, 0.8, 1.0},
+      std::vector<double>{0.2, 0.4, 0.3, 1.0, 0.9, 0.9, 0.5});  // a step at 0.5; none at 0.8
+  for (const auto& law :
+       {PressureLaw<double>::tabulated(table), PressureLaw<double>::annulus(0.4)}) {
+    const std::vector<PressureTable::Jump> jumps = law_jumps(law);
+    ASSERT_EQ(jumps.size(), 1u) << pressure_name(law.kind);
+    const double b = jumps[0].rho, d = 1e-12;
+    EXPECT_NEAR(jumps[0].drop, law(b - d, 1.0 - b + d) - law(b + d, 1.0 - b - d), 1e-9)
+        << pressure_name(law.kind);
+  }
+  EXPECT_TRUE(law_jumps(PressureLaw<double>::hertz()).empty());
+}
+
+// The kinks a spot's table grades at: the jump of sigma0'' at each sample, against one-sided
+// second differences of the law on either side, and largest first.
+TEST(PressureTable, ItsKinksAreTheJumpsOfTheSecondDerivativeAtItsSamples) {
+  std::vector<double> rho, sig;
+  for (int i = 0; i <= 20; ++i) {
+    rho.push_back(i / 20.0);
+    sig.push_back(1.0 + 0.3 * std::sin(7.0 * rho.back()));
+  }
+  const PressureTable table(rho, sig);
+  const std::vector<PressureTable::Kink> kinks = table.kinks();
+  ASSERT_EQ(kinks.size(), 19u);
+  const double h = 1e-4;
+  auto f = [&](double x) { return table(x, 1.0 - x); };
+  for (std::size_t k = 0; k < kinks.size(); ++k) {
+    const double r = kinks[k].rho;
+    // sigma0 is continuous, so f(r) serves both sides.
+    const double left = (2 * f(r) - 5 * f(r - h) + 4 * f(r - 2 * h) - f(r - 3 * h)) / (h * h);
+    const double right = (2 * f(r) - 5 * f(r + h) + 4 * f(r + 2 * h) - f(r + 3 * h)) / (h * h);
+    EXPECT_NEAR(kinks[k].strength, std::fabs(right - left), 1e-4 * (1.0 + std::fabs(right - left)))
+        << "at " << r;
+    if (k > 0) {
+      EXPECT_LE(kinks[k].strength, kinks[k - 1].strength);
+    }
+  }
 }
 
 }  // namespace

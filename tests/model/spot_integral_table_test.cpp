@@ -251,8 +251,8 @@ TEST(SpotIntegralTable, OtherLawsMatchTheIntegratorToo) {
   };
   // The ring's rim integral needs a finer angular rule than fine_rule() off q = 1.
   static const std::vector<QuadratureNode> rim = make_tanh_sinh_rule(1.0 / 64.0, 1e-30);
-  // A table with kinks and a step (on the rectangle: an ellipse's table law costs ~1.4 ms a
-  // point to integrate, 9 s for its table).
+  // A table with kinks and a step: the rectangle's points by strips, the ellipse's by layers of
+  // the uniform ellipse (ellipse_law_integrator.hpp); the reference integrates the law itself.
   const testing::spot_cases::LawCase table = testing::spot_cases::kinked_step_table();
   const std::vector<Case> cases = {
       {ContactSpot::ellipse(0.7), {"power:1.7", PressureLaw<double>::power(1.7)}, &fine_rule()},
@@ -261,7 +261,8 @@ TEST(SpotIntegralTable, OtherLawsMatchTheIntegratorToo) {
       {ContactSpot::ellipse(0.7), {"ring", PressureLaw<double>::ring()}, &rim},
       {ContactSpot::rect(0.7), {"ring", PressureLaw<double>::ring()}, &rim},
       {ContactSpot::circle(), {"hertz", PressureLaw<double>::hertz()}, &fine_rule()},
-      {ContactSpot::rect(0.7), {table.name, table.law}, &fine_rule()}};
+      {ContactSpot::rect(0.7), {table.name, table.law}, &fine_rule()},
+      {ContactSpot::ellipse(0.7), {table.name, table.law}, &fine_rule()}};
   for (const Case& c : cases) {
     const SpotIntegralTable& table = table_for(c.spot, c.law);
     const SpotKind kind = c.spot.kind == SpotKind::Rect ? SpotKind::Rect : SpotKind::Ellipse;

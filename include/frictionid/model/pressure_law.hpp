@@ -85,6 +85,53 @@ struct PressureLaw {
 // Moments m_0..m_5 of a law. Closed forms where they exist; the even moments of power:N come
 // from m_0 (m_2 = m_0/(2n+3), m_4 = 3 m_0/((2n+3)(2n+5))) with m_0 by quadrature, which keeps
 // the code path generic in T (no digamma needed for derivatives with respect to n).
+// d sigma0/d rho of a law with a density (not the ring law), at 0 < rho < 1; one_minus_rho as
+// for the law itself. Steps are not in it (law_jumps).
+template <typename T>
+double law_slope(const PressureLaw<T>& law, double rho, double one_minus_rho) {
+  const double rim = one_minus_rho * (1.0 + rho);
+  const double n = value_of(law.n);
+  switch (law.kind) {
+    case PressureKind::Hertz:
+      return -rho / std::sqrt(rim);
+    case PressureKind::Parabolic:
+      return -2.0 * rho;
+    case PressureKind::Power:
+      return n == 0.0 ? 0.0 : -2.0 * n * rho * std::exp((n - 1.0) * std::log(rim));
+    case PressureKind::Table:
+      return law.table->slope(rho, one_minus_rho);
+    default:
+      return 0.0;
+  }
+}
+
+// The exponent gamma of sigma0 ~ (1 - rho^2)^gamma at the rim (0: sigma0 stays positive there);
+// its slope then grows like (1 - rho^2)^(gamma - 1).
+template <typename T>
+double law_rim_exponent(const PressureLaw<T>& law) {
+  switch (law.kind) {
+    case PressureKind::Hertz:
+      return 0.5;
+    case PressureKind::Parabolic:
+      return 1.0;
+    case PressureKind::Power:
+      return value_of(law.n);
+    case PressureKind::Table:
+      return law.table->gamma();
+    default:
+      return 0.0;
+  }
+}
+
+// Where sigma0 jumps inside the spot, and its value just inside minus just outside.
+template <typename T>
+std::vector<PressureTable::Jump> law_jumps(const PressureLaw<T>& law) {
+  if (law.kind == PressureKind::Table) return law.table->jumps();
+  if (law.kind == PressureKind::Annulus && law.inner_radius() > 0.0)
+    return {{law.inner_radius(), -1.0}};
+  return {};
+}
+
 template <typename T>
 struct LawMoments {
   T m[6];

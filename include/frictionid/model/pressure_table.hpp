@@ -95,6 +95,56 @@ class PressureTable {
     return edge * interpolate(rho);
   }
 
+  // d sigma0/d rho at rho (0 < rho < 1), on the run that holds rho (the one after a step at
+  // rho itself). Near the rim with gamma > 0 it grows like (1 - rho^2)^(gamma - 1).
+  double slope(double rho, double one_minus_rho) const {
+    const double g = interpolate(rho), dg = interpolate_slope(rho);
+    if (gamma_ == 0.0) return dg;
+    const double rim = one_minus_rho * (1.0 + rho);
+    const double edge = std::pow(rim, gamma_);
+    return edge * dg - 2.0 * gamma_ * rho * (edge / rim) * g;
+  }
+
+  // Where sigma0 jumps, and by how much it drops there: sigma0 just inside minus just outside.
+  struct Jump {
+    double rho, drop;
+  };
+  std::vector<Jump> jumps() const {
+    std::vector<Jump> out;
+    for (std::size_t i = 1; i < rho_.size(); ++i)
+      if (rho_[i] == rho_[i - 1] && g_[i] != g_[i - 1] && rho_[i] > 0.0 && rho_[i] < 1.0) {
+        const double edge =
+            gamma_ == 0.0 ? 1.0 : std::pow((1.0 - rho_[i]) * (1.0 + rho_[i]), gamma_);
+        out.push_back({rho_[i], edge * (g_[i - 1] - g_[i])});
+      }
+    return out;
+  }
+
+  // How strongly sigma0 kinks at each sample inside a run: the jump of its second derivative
+  // there (its interpolant is C^1), largest first. A spot's table grades its cells at the
+  // strongest of them (spot_integral_table.hpp).
+  struct Kink {
+    double rho, strength;
+  };
+  std::vector<Kink> kinks() const {
+    std::vector<Kink> out;
+    for (std::size_t i = 1; i + 1 < rho_.size(); ++i) {
+      if (rho_[i] == rho_[i - 1] || rho_[i + 1] == rho_[i]) continue;  // a step's sample
+      const double h0 = rho_[i] - rho_[i - 1], h1 = rho_[i + 1] - rho_[i];
+      // g'' at the end of the piece before and at the start of the piece after.
+      const double before =
+          (6.0 * (g_[i - 1] - g_[i]) + 2.0 * h0 * slope_[i - 1] + 4.0 * h0 * slope_[i]) / (h0 * h0);
+      const double after =
+          (-6.0 * (g_[i] - g_[i + 1]) - 4.0 * h1 * slope_[i] - 2.0 * h1 * slope_[i + 1]) /
+          (h1 * h1);
+      const double edge = gamma_ == 0.0 ? 1.0 : std::pow((1.0 - rho_[i]) * (1.0 + rho_[i]), gamma_);
+      out.push_back({rho_[i], edge * std::fabs(after - before)});
+    }
+    std::stable_sort(out.begin(), out.end(),
+                     [](const Kink& a, const Kink& b) { return a.strength > b.strength; });
+    return out;
+  }
+
   // The law's moments m_0..m_5 (pressure_law.hpp), computed once by `compute` and kept: they
   // depend only on the samples, and a fit asks for them at every evaluation of every start,
   // which cost a pass over every sample each time (a 5000-sample table took minutes to fit).
@@ -120,6 +170,18 @@ class PressureTable {
     const double t2 = t * t, t3 = t2 * t;
     return (2 * t3 - 3 * t2 + 1) * g_[i] + (t3 - 2 * t2 + t) * h * slope_[i] +
            (-2 * t3 + 3 * t2) * g_[i + 1] + (t3 - t2) * h * slope_[i + 1];
+  }
+
+  // The derivative of interpolate(): zero outside the samples, where g is held constant.
+  double interpolate_slope(double x) const {
+    if (x < rho_.front() || x >= rho_.back()) return 0.0;
+    const auto it = std::upper_bound(rho_.begin(), rho_.end(), x);
+    const std::size_t i = static_cast<std::size_t>(it - rho_.begin()) - 1;
+    const double h = rho_[i + 1] - rho_[i];
+    const double t = (x - rho_[i]) / h;
+    const double t2 = t * t;
+    return ((6 * t2 - 6 * t) * (g_[i] - g_[i + 1])) / h + (3 * t2 - 4 * t + 1) * slope_[i] +
+           (3 * t2 - 2 * t) * slope_[i + 1];
   }
 
   static std::vector<double> monotone_slopes(const std::vector<double>& x,

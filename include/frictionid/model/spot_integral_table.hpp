@@ -59,9 +59,11 @@
 //
 // The points. Ellipse: SpotIntegrator, with rules chosen for the law (node_rules: Gauss-Legendre,
 // exact where sigma0 is a polynomial along a ray; a sine-squared substitution for Hertz and
-// powers >= 1). Rectangle: RectStripIntegrator, the y-integral in closed form: 10-30 us a point,
-// and exact next to the corners, where SpotIntegrator's default angular rule errs by up to
-// 5e-9 A0.
+// powers >= 1); under a table law, layers of the uniform ellipse (ellipse_law_integrator.hpp)
+// from that ellipse's own table, built first (0.1-0.5 ms a point, any number of samples; the
+// table then takes 10,000-45,000 points, every sample a line its cells resolve). Rectangle:
+// RectStripIntegrator, the y-integral in closed form: 10-30 us a point, and exact next to the
+// corners, where SpotIntegrator's default angular rule errs by up to 5e-9 A0.
 //
 // Accuracy: within 3e-11 A0 of the integrals (|ex|, |ey| <= A0) over the whole plane for the
 // uniform, Hertz, parabolic and annulus laws and q from 0.4 to 2.5, measured at 4,000 random
@@ -81,7 +83,9 @@
 #include <cstring>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <unordered_map>
@@ -89,6 +93,7 @@
 #include <vector>
 
 #include <frictionid/model/contact_spot.hpp>
+#include <frictionid/model/ellipse_law_integrator.hpp>
 #include <frictionid/model/gauss_legendre_rule.hpp>
 #include <frictionid/model/map_strip_integrator.hpp>
 #include <frictionid/model/pressure_law.hpp>
@@ -108,20 +113,22 @@ namespace frictionid::model {
 // a ln|a| at x = c_x and the law's rim and breakpoints, where the x-range is cut; the fine
 // tanh-sinh rule reaches ~1e-14 A0 on every piece. Far from the rectangle (more than 2 max(1, q)
 // away) the closed forms' terms would cancel (they grow like |c|^2); there the y-integrand is
-// analytic over the strip and 24 Gauss–Legendre points take it. 10-30 us a point, against
+// analytic over the strip and 4-10 Gauss–Legendre points take it. 10-30 us a point, against
 // 100-300 us for the ray integration of SpotIntegrator, whose default angular rule also errs by
 // up to 5e-9 A0 within 1e-4 of a corner, where this has no difficulty. Not for the ring law (no
 // density).
 class RectStripIntegrator {
  public:
-  // A table cut at every sample is a cubic between two of them (see SpotIntegrator): 16
-  // Gauss–Legendre points take such a piece off the rim and at least half its length from c_x.
+  // The x-range is cut at every breakpoint of the law, however many: a table is a cubic between
+  // two samples. A piece that ends at c_x or at the rim takes the fine tanh-sinh rule; any
+  // other Gauss–Legendre with as many points as its distance from the nearest singularity asks
+  // for (c_x +- i dist(c_y, |y| <= q), and +-1 where sigma0 ~ (1 - x^2)^gamma, gamma
+  // fractional): 4-8 for most of a fine table's pieces.
   RectStripIntegrator(const PressureLaw<double>& law, double q) : law_(law), q_(q) {
-    std::vector<double> kept = law_.breakpoints();
-    cubic_pieces_ = law_.kind == PressureKind::Table && kept.size() <= SpotIntegrator::kMaxBreaks;
-    if (kept.size() > SpotIntegrator::kMaxBreaks) kept = law_.steps();
-    for (double b : kept)
+    for (double b : law_.breakpoints())
       if (b > 0.0 && b < 1.0) breaks_.push_back(b);
+    const double gamma = law_rim_exponent(law_);
+    fractional_ = gamma != std::floor(gamma);
   }
 
   SpotIntegrals operator()(double cx, double cy) const {
@@ -137,12 +144,18 @@ class RectStripIntegrator {
     const double gap =
         std::hypot(std::max(0.0, std::fabs(cx) - 1.0), std::max(0.0, std::fabs(cy) - q));
     const bool far = gap > 2.0 * std::max(1.0, q);
+    // Far away the y-integrand's branch points c_y +- i|a| keep at least `gap` from the strip:
+    // Gauss–Legendre with as many points as that asks for (y^2 takes three of its degrees).
+    const std::vector<QuadratureNode>* y_rule = far ? &rule(points_for(gap, 2.0 * q, 3)) : nullptr;
+    const double gap_y = std::max(0.0, std::fabs(cy) - q);  // the branch points' offset
     double acc[12] = {};
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       const double lo = cuts[k], hi = cuts[k + 1], len = hi - lo;
-      const bool cubic =
-          cubic_pieces_ && lo != -1.0 && hi != 1.0 && std::max(lo - cx, cx - hi) >= 0.5 * len;
-      for (const QuadratureNode& node : cubic ? smooth_piece_rule() : fine_rule()) {
+      const bool ends = lo == cx || hi == cx || lo == -1.0 || hi == 1.0;
+      double distance = std::hypot(std::max({0.0, lo - cx, cx - hi}), gap_y);
+      if (fractional_) distance = std::min(distance, 1.0 - std::max(std::fabs(lo), std::fabs(hi)));
+      const int n = ends ? 0 : points_for(distance, len);
+      for (const QuadratureNode& node : n > 0 ? rule(n) : fine_rule()) {
         const double x = lo + len * node.from_left;
         // a = x - c_x and 1 - |x| to full precision next to the cut and the rim.
         const double a = lo == cx   ? len * node.from_left
@@ -157,7 +170,7 @@ class RectStripIntegrator {
         double ex[3], ey[2];  // ∫ {1, y, y^2} e_x dy and ∫ {1, y} e_y dy over |y| <= q
         if (far) {
           ex[0] = ex[1] = ex[2] = ey[0] = ey[1] = 0.0;
-          for (const QuadratureNode& g : far_rule()) {
+          for (const QuadratureNode& g : *y_rule) {
             const double y = q * (g.from_left - g.from_right), w = 2.0 * q * g.weight;
             const double eta = y - cy, inv = w / std::hypot(a, eta);
             ex[0] -= eta * inv;
@@ -208,14 +221,32 @@ class RectStripIntegrator {
   }
 
  private:
-  static const std::vector<QuadratureNode>& far_rule() {
-    static const std::vector<QuadratureNode> rule = make_gauss_legendre_rule(24);
-    return rule;
+  static constexpr double kLog = 30.0;  // -ln of a piece's relative error
+  static constexpr int kLeast = 4;      // a cubic sigma0 times x^2: degree 5
+  static constexpr int kMost = 24;      // beyond: the fine rule
+
+  // Gauss–Legendre points for a piece whose nearest singularity lies `distance` from it (the
+  // Bernstein ellipse through a point that far beyond an end; the polynomial factor takes
+  // `degrees` of the rule's), 0 when it would take more than kMost.
+  static int points_for(double distance, double length, int degrees = 6) {
+    const double z = 1.0 + 2.0 * distance / length;
+    const double n =
+        std::ceil(0.5 * (kLog / std::log(z + std::sqrt((z - 1.0) * (z + 1.0))) + degrees));
+    return n <= kMost ? std::max(kLeast, static_cast<int>(n)) : 0;
+  }
+
+  static const std::vector<QuadratureNode>& rule(int n) {
+    static const std::vector<std::vector<QuadratureNode>> rules = [] {
+      std::vector<std::vector<QuadratureNode>> r(kMost + 1);
+      for (int k = 1; k <= kMost; ++k) r[static_cast<std::size_t>(k)] = make_gauss_legendre_rule(k);
+      return r;
+    }();
+    return rules[static_cast<std::size_t>(n)];
   }
 
   PressureLaw<double> law_;
   double q_;
-  bool cubic_pieces_ = false;  // a table cut at every sample
+  bool fractional_ = false;  // sigma0 ~ (1 - x^2)^gamma with gamma fractional: branch points at +-1
   std::vector<double> breaks_;
 };
 
@@ -294,7 +325,16 @@ class SpotIntegralTable {
     const RectStripIntegrator strips(law, q_);
     const PressureMap none;
     const MapStripIntegrator map_strips(map_ ? *map_ : none);
-    Builder{*this, integrate, strips, map_strips, stop, parallel, {}}.run();
+    // A table law on an ellipse: its points from the uniform ellipse's table, layer by layer.
+    std::optional<EllipseLawIntegrator<SpotIntegralTable>> layers;
+    if (kind_ == SpotKind::Ellipse && law.kind == PressureKind::Table) {
+      auto uniform = std::make_shared<const SpotIntegralTable>(
+          ContactSpot::ellipse(q_), PressureLaw<double>::uniform(), q_, stop, parallel);
+      stats_.layer_points = uniform->stats().points;
+      layers.emplace(std::move(uniform), law, q_);
+    }
+    Builder{*this, integrate, strips, map_strips, layers ? &*layers : nullptr, stop, parallel, {}}
+        .run();
   }
 
   // The integrals for the centre of rotation at physical (cx, cy), units of R.
@@ -337,6 +377,7 @@ class SpotIntegralTable {
 
   struct Stats {
     std::size_t points = 0;        // integrals computed by the build (with the check points)
+    std::size_t layer_points = 0;  // those of the uniform ellipse's table a table law's came from
     std::size_t pieces = 0;        // Chebyshev pieces stored
     std::size_t coefficients = 0;  // of each channel, summed over the pieces
     double estimate = 0.0;         // the build's own error estimate, worst cell, relative to A0
@@ -762,11 +803,16 @@ class SpotIntegralTable {
       return;
     }
     // The lines |x| = B (rectangle) or P = B (ellipse) where sigma0 jumps or kinks, and the rim.
-    // A table's every sample is a kink (its interpolant is only C^1 there): beyond a few, only
-    // its steps are graded and the kinks left to the cells' degrees.
+    // A table's every sample is a kink (its interpolant is only C^1 there): beyond a few, its
+    // steps and its strongest kinks (at an extremum, where the interpolant flattens) are graded
+    // and the other kinks left to the cells' degrees.
     std::vector<double> lines;
     const std::vector<double> breaks = law_.breakpoints();
-    for (double b : breaks.size() <= kMaxGradedBreaks ? breaks : law_.steps())
+    std::vector<double> graded = breaks.size() <= kMaxGradedBreaks ? breaks : law_.steps();
+    if (breaks.size() > kMaxGradedBreaks)
+      for (const PressureTable::Kink& k : law_.table->kinks())
+        if (graded.size() < kMaxGradedBreaks) graded.push_back(k.rho);
+    for (double b : graded)
       if (b > 0.0 && b < 1.0) lines.push_back(b);
     lines.push_back(1.0);
     std::sort(lines.begin(), lines.end());
@@ -955,6 +1001,7 @@ class SpotIntegralTable {
     const SpotIntegrator& integrate;
     const RectStripIntegrator& strips;
     const MapStripIntegrator& map_strips;
+    const EllipseLawIntegrator<SpotIntegralTable>* layers;  // a table law on an ellipse
     const std::function<bool()>& stop;
     const SpotParallelFor& parallel;
 
@@ -1024,6 +1071,7 @@ class SpotIntegralTable {
       const bool by_strips = t.kind_ == SpotKind::Rect && t.law_.kind != PressureKind::Ring;
       const SpotIntegrals v = t.kind_ == SpotKind::Map ? map_strips(cx, cy)
                               : by_strips              ? strips(cx, cy)
+                              : layers                 ? (*layers)(cx, cy)
                                                        : integrate(cx, cy);
       return v.channels();
     }

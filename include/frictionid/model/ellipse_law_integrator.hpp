@@ -1,0 +1,278 @@
+// The twelve spot integrals of an ellipse under any pressure law with a density, from those of
+// the uniform ellipse (docs/physics.md §9.3, "Any law from the uniform ellipse").
+//
+// sigma0 = law(rho_e) is a stack of uniform elliptic layers: with L(s) the law,
+//   L(rho_e) = L(1) + sum over jumps J_k [rho_e < s_k] + ∫_0^1 (-L'(s)) [rho_e < s] ds,
+// and the uniform ellipse of elliptic radius s is the unit one scaled by s. The direction field
+// does not change under that scaling, so an integral whose weight has degree d (1, x or y, times
+// x or y for the moments) is s^(2+d) U(c/s), U the unit uniform ellipse's integral, and
+//   I(c) = L(1) U(c) + sum_k J_k s_k^(2+d) U(c/s_k) + ∫_0^1 (-L'(s)) s^(2+d) U(c/s) ds.   (9.8)
+// U comes from its table (~0.4 us a point), so a point costs one 1-D integral in s instead of a
+// 2-D one: the rays of SpotIntegrator cut every ray and the angular range at each of a table
+// law's samples (39 ms a point for 41 samples), and left a law of more than 64 samples to their
+// rules across its kinks (6e-6 of f N for 100 samples). Here the samples cut only the s-range.
+//
+// The s-integrand is smooth but at
+//  - s = rho_e(c), where c/s crosses the rim: U goes like d^2 ln|d| there (a cut), and its
+//    complex singularities come as close to the real axis as c/s comes to the rim, which for
+//    a ray from the centre that meets the rim at a shallow angle (an elongated ellipse) is close
+//    all along;
+//  - the law's samples, where a table's L' has kinks (cuts; a step is a jump term instead);
+//  - the rim s = 1, where L' ~ (1 - s^2)^(gamma - 1) for sigma0 ~ (1 - rho^2)^gamma: for
+//    0 < gamma < 1 the rim piece is taken in w with 1 - s = (1 - a) w^m, m = ceil(1/gamma)
+//    (Hertz: m = 2, which makes the integrand analytic), so that it is bounded.
+// Each piece is halved until its singularities keep 1.3 half-lengths from its middle, by a
+// lower bound on their distance (U is analytic within the distance from c/s to the rim, found
+// by bisection), and then takes Gauss–Legendre with as many points as that distance asks for
+// 1e-12; parts next to rho_e stop at 1% of it and take tanh-sinh, as does a rim end that keeps
+// a fractional power. 250-650 points of U's table a point (0.1-0.3 ms) for ellipses of aspect
+// 0.1-3, about 4 more per sample of a table; within 1e-12 A0 of the rays at their fine rules.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include <frictionid/model/gauss_legendre_rule.hpp>
+#include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model/spot_integrals.hpp>
+#include <frictionid/model/tanh_sinh_rule.hpp>
+
+namespace frictionid::model {
+
+// Uniform: the unit uniform ellipse of aspect q, anything with
+// std::array<double, 12> channels_at(double cx, double cy) (a SpotIntegralTable).
+template <typename Uniform>
+class EllipseLawIntegrator {
+ public:
+  EllipseLawIntegrator(std::shared_ptr<const Uniform> uniform, const PressureLaw<double>& law,
+                       double q)
+      : uniform_(std::move(uniform)),
+        law_(law),
+        q_(q),
+        rim_value_(law(1.0, 0.0)),
+        jumps_(law_jumps(law)) {
+    for (double b : law.breakpoints())
+      if (b > 0.0 && b < 1.0) breaks_.push_back(b);
+    const double gamma = law_rim_exponent(law);
+    density_ = law.kind == PressureKind::Hertz || law.kind == PressureKind::Parabolic ||
+               law.kind == PressureKind::Table ||
+               (law.kind == PressureKind::Power && value_of(law.n) > 0.0);
+    if (gamma > 0.0 && gamma < 1.0)
+      rim_power_ = static_cast<int>(std::min(64.0, std::ceil(1.0 / gamma)));
+    // The rim piece's integrand goes like w^(m gamma - 1) (m = 1: (1 - s)^(gamma - 1)): smooth
+    // when that power is a whole number.
+    rim_smooth_ = gamma == 0.0 || rim_power_ * gamma == std::floor(rim_power_ * gamma);
+    fractional_ = gamma != std::floor(gamma);
+  }
+
+  SpotIntegrals operator()(double cx, double cy) const {
+    double acc[12] = {};
+    if (rim_value_ != 0.0) layer(cx, cy, 1.0, rim_value_, acc);
+    for (const PressureTable::Jump& j : jumps_) layer(cx, cy, j.rho, j.drop, acc);
+    if (density_) slopes(cx, cy, acc);
+    return SpotIntegrals::from_channels(acc);
+  }
+
+ private:
+  // The degree of each channel's weight (ex[w], ey[w]: 1, x, y; x_ey[w], y_ex[w] one more).
+  static constexpr int kDegree[12] = {0, 1, 1, 0, 1, 1, 1, 2, 2, 1, 2, 2};
+  static constexpr double kLog = 28.0;    // -ln of a Gauss–Legendre part's relative error
+  static constexpr int kLeast = 4;        // a quadratic L' times s^4: degree 6
+  static constexpr int kMost = 32;        // points of a part at z = kZ: 28
+  static constexpr double kZ = 1.3;       // singularities this many half-lengths away: one rule
+  static constexpr double kFloor = 1e-2;  // parts next to rho_e shorter than this times rho_e
+  static constexpr int kMaxDepth = 60;
+  static constexpr double kNearRim = 0.9;  // rho_e this far across the rim piece: cut in w
+
+  // w times the uniform ellipse of elliptic radius s: w s^(2+d) U(c/s).
+  void layer(double cx, double cy, double s, double w, double* acc) const {
+    if (w == 0.0 || !(s > 1e-100)) return;  // below that its share underflows
+    const std::array<double, 12> u = uniform_->channels_at(cx / s, cy / s);
+    const double w2 = w * s * s, w3 = w2 * s, w4 = w3 * s;
+    for (std::size_t j = 0; j < 12; ++j)
+      acc[j] += (kDegree[j] == 0 ? w2 : kDegree[j] == 1 ? w3 : w4) * u[j];
+  }
+
+  // A piece of the s-range in the variable w in [0, 1]: s = a + len w, or at the rim, for
+  // 0 < gamma < 1, 1 - s = len w^m.
+  struct Piece {
+    double a, len;
+    int m;
+    double one_minus_s(double w) const {
+      return m == 1 ? (1.0 - a - len * w) : len * std::pow(w, m);
+    }
+    double s(double w) const { return m == 1 ? a + len * w : 1.0 - one_minus_s(w); }
+    double ds_dw(double w) const { return m == 1 ? len : len * m * std::pow(w, m - 1); }
+    // A radius about w free of singularities, given one of rs about s(w).
+    double radius(double w, double rs) const {
+      return m == 1 ? rs / len : std::pow(std::pow(w, m) + rs / len, 1.0 / m) - w;
+    }
+  };
+
+  struct Centre {
+    double cx, cy, norm, re;  // c, |c| and rho_e(c)
+  };
+
+  // Lower bounds on the distance from s to the nearest complex singularity of the integrand
+  // (docs/physics.md §9.3). Along the ray p = lambda c/|c|, U is analytic within the distance D
+  // from p to the rim, and no singular lambda exceeds the spot's largest radius. A law
+  // (1 - s^2)^gamma g(s) of fractional gamma has branch points at s = -1 and, unless the piece
+  // ends there (its rule takes that end), s = 1.
+  double singular_radius(const Centre& c, double s) const {
+    if (c.norm == 0.0) return HUGE_VAL;  // U(0) s^(2+d), a polynomial
+    const double D = rim_distance(c.cx / s, c.cy / s);
+    return std::max(s * s * D / (c.norm + s * D), c.norm / std::max(1.0, q_) - s);
+  }
+  double law_radius(double s, bool ends_at_rim) const {
+    return fractional_ ? std::min(1.0 + s, ends_at_rim ? HUGE_VAL : 1.0 - s) : HUGE_VAL;
+  }
+
+  // The distance from (x, y) to the rim x^2 + (y/q)^2 = 1, from inside or outside: the nearest
+  // rim point (e0^2 x/(t + e0^2), e1^2 y/(t + e1^2)) for the root t of the usual secular
+  // equation, found by bisection (after D. Eberly, "Distance from a point to an ellipse").
+  double rim_distance(double x, double y) const {
+    double e0 = 1.0, e1 = q_, y0 = std::fabs(x), y1 = std::fabs(y);
+    if (e1 > e0) {
+      std::swap(e0, e1);
+      std::swap(y0, y1);
+    }
+    if (!(std::isfinite(y0) && std::isfinite(y1))) return HUGE_VAL;
+    if (y1 > 0.0) {
+      if (y0 > 0.0) {
+        const double z0 = y0 / e0, z1 = y1 / e1, g = z0 * z0 + z1 * z1 - 1.0;
+        if (g == 0.0) return 0.0;
+        const double r0 = (e0 / e1) * (e0 / e1), n0 = r0 * z0;
+        double lo = z1 - 1.0, hi = g < 0.0 ? 0.0 : std::hypot(n0, z1) - 1.0, t = 0.0;
+        for (int i = 0; i < 200; ++i) {
+          t = 0.5 * (lo + hi);
+          if (t == lo || t == hi) break;
+          const double a = n0 / (t + r0), b = z1 / (t + 1.0), f = a * a + b * b - 1.0;
+          if (f > 0.0)
+            lo = t;
+          else if (f < 0.0)
+            hi = t;
+          else
+            break;
+        }
+        const double x0 = r0 * y0 / (t + r0), x1 = y1 / (t + 1.0);
+        return std::hypot(x0 - y0, x1 - y1);
+      }
+      return std::fabs(y1 - e1);
+    }
+    const double num = e0 * y0, den = e0 * e0 - e1 * e1;
+    if (num < den) {
+      const double u = num / den, x0 = e0 * u, x1 = e1 * std::sqrt(1.0 - u * u);
+      return std::min(std::hypot(x0 - y0, x1), std::fabs(y0 - e0));
+    }
+    return std::fabs(y0 - e0);
+  }
+
+  void slopes(double cx, double cy, double* acc) const {
+    const Centre c{cx, cy, std::hypot(cx, cy), std::hypot(cx, cy / q_)};
+    std::vector<double> cuts = {0.0, 1.0};
+    cuts.insert(cuts.end(), breaks_.begin(), breaks_.end());
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      const double a = cuts[k], b = cuts[k + 1];
+      const bool inside = c.re > a && c.re < b;  // rho_e cuts this piece
+      if (b == 1.0 && rim_power_ > 1 && inside && c.re - a > kNearRim * (1.0 - a)) {
+        // rho_e next to the rim: cut in w (w = 0 at the rim), where it keeps its distance from
+        // the law's branch point there however close it comes.
+        const Piece p{a, b - a, rim_power_};
+        const double we = std::pow((1.0 - c.re) / p.len, 1.0 / p.m);
+        subdivide(c, p, 0.0, we, End::Rim, End::Centre, 0, acc);
+        subdivide(c, p, we, 1.0, End::Centre, End::None, 0, acc);
+      } else if (b == 1.0 && rim_power_ > 1) {
+        const double a1 = inside ? c.re : a;
+        if (inside) subdivide(c, {a, c.re - a, 1}, 0.0, 1.0, End::None, End::Centre, 0, acc);
+        subdivide(c, {a1, 1.0 - a1, rim_power_}, 0.0, 1.0, End::Rim,
+                  inside ? End::Centre : End::None, 0, acc);
+      } else {
+        const Piece p{a, b - a, 1};
+        const End last = b == 1.0 ? End::Rim : End::None;
+        const double we = inside ? (c.re - a) / p.len : 1.0;
+        subdivide(c, p, 0.0, we, End::None, inside ? End::Centre : last, 0, acc);
+        if (inside) subdivide(c, p, we, 1.0, End::Centre, last, 0, acc);
+      }
+    }
+  }
+
+  // What lies at an end of a part of a piece: nothing singular, s = rho_e(c) (where c/s
+  // crosses the rim) or the rim s = 1.
+  enum class End { None, Centre, Rim };
+
+  // The part w in [w0, w1] of a piece: one rule where the singularities keep kZ half-lengths
+  // from its middle, else two halves. Parts next to rho_e(c) shrink to kFloor rho_e and take
+  // tanh-sinh, which absorbs U's d^2 ln|d| at that end; so does a rim end where the law leaves
+  // a fractional power.
+  void subdivide(const Centre& c, const Piece& p, double w0, double w1, End end0, End end1,
+                 int depth, double* acc) const {
+    const double h = 0.5 * (w1 - w0), wm = w0 + h;
+    const bool at_rim = end0 == End::Rim || end1 == End::Rim;
+    // In tau (m > 1) the rim's branch point is gone; a fractional power of w remains at w = 0,
+    // which only the part that ends there sees closer than its length.
+    const double sm = p.s(wm);
+    double z_law = p.radius(wm, law_radius(sm, at_rim || p.m > 1)) / h;
+    if (p.m > 1 && !rim_smooth_ && !at_rim) z_law = std::min(z_law, wm / h);
+    const double z = std::min(z_law, p.radius(wm, singular_radius(c, sm)) / h);
+    // Next to rho_e(c) (or just beyond the rim from it) U's singularities crowd towards the real
+    // axis: a part that short is left to tanh-sinh, unless the law's own branch point is near.
+    const double s0 = p.s(w0), s1 = p.s(w1), s_length = std::fabs(s1 - s0);
+    const double from_re =
+        std::max(0.0, std::max(std::min(s0, s1) - c.re, c.re - std::max(s0, s1)));
+    const bool tiny = s_length < kFloor * c.re && from_re <= s_length && z_law >= kZ;
+    if (z >= kZ || tiny || depth >= kMaxDepth) {
+      const bool singular =
+          tiny || end0 == End::Centre || end1 == End::Centre || (at_rim && !rim_smooth_);
+      for (const QuadratureNode& g : singular ? radial_rule() : rule(points_for(z))) {
+        const double w = w0 + 2.0 * h * g.from_left;
+        // 1 - s to full precision next to the rim.
+        const double omr =
+            p.m == 1 && end1 == End::Rim ? 2.0 * h * p.len * g.from_right : p.one_minus_s(w);
+        const double s = p.m == 1 ? p.s(w) : 1.0 - omr;
+        layer(c.cx, c.cy, s, -g.weight * 2.0 * h * p.ds_dw(w) * law_slope(law_, s, omr), acc);
+      }
+      return;
+    }
+    subdivide(c, p, w0, wm, end0, End::None, depth + 1, acc);
+    subdivide(c, p, wm, w1, End::None, end1, depth + 1, acc);
+  }
+
+  // Gauss–Legendre points for a piece whose nearest singularity lies z half-lengths from its
+  // middle: Bernstein ellipse parameter z + sqrt(z^2 - 1); the polynomial factor (L' times
+  // s^(2+d), degree 6) takes six of the rule's degrees.
+  static int points_for(double z) {
+    if (!(z > 1.0)) return kMost;
+    const double rho = z + std::sqrt((z - 1.0) * (z + 1.0));
+    const double n = std::ceil(0.5 * (kLog / std::log(rho) + 6.0));
+    return n < kMost ? std::max(kLeast, static_cast<int>(n)) : kMost;
+  }
+
+  static const std::vector<QuadratureNode>& rule(int n) {
+    static const std::vector<std::vector<QuadratureNode>> rules = [] {
+      std::vector<std::vector<QuadratureNode>> r(kMost + 1);
+      for (int k = 1; k <= kMost; ++k) r[static_cast<std::size_t>(k)] = make_gauss_legendre_rule(k);
+      return r;
+    }();
+    return rules[static_cast<std::size_t>(n)];
+  }
+
+  std::shared_ptr<const Uniform> uniform_;
+  PressureLaw<double> law_;
+  double q_;
+  double rim_value_;
+  std::vector<PressureTable::Jump> jumps_;
+  std::vector<double> breaks_;
+  bool density_ = false;
+  int rim_power_ = 1;
+  bool rim_smooth_ = true;
+  bool fractional_ = false;  // gamma not a whole number
+};
+
+}  // namespace frictionid::model

@@ -1,0 +1,110 @@
+// The integrals of an ellipse under a pressure law, built from the uniform ellipse's table layer
+// by layer (ellipse_law_integrator.hpp, docs/physics.md (9.8)), against the ray integration of
+// spot_integrals.hpp at its fine rules, which integrates the law itself over the spot (every
+// breakpoint of these laws cuts its rays and their angles).
+#include <frictionid/model/ellipse_law_integrator.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <frictionid/model/contact_spot.hpp>
+#include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model/pressure_table.hpp>
+#include <frictionid/model/spot_integral_table.hpp>
+#include <frictionid/model/spot_integrals.hpp>
+#include <frictionid/model/tanh_sinh_rule.hpp>
+
+#include "model/spot_cases.hpp"
+
+namespace frictionid::model {
+namespace {
+
+using testing::spot_cases::Uniform;
+constexpr double kPi = 3.14159265358979323846;
+
+struct NamedLaw {
+  std::string name;
+  PressureLaw<double> law;
+};
+
+// Every kind of law the layers serve: closed forms with a fractional and a whole rim exponent,
+// a step only, and tables with kinks and a step, and with an edge exponent (1 - rho^2)^0.7.
+std::vector<NamedLaw> laws() {
+  std::vector<double> rho, sig;
+  for (int i = 0; i <= 6; ++i) {  // few samples: each one cuts every ray of the reference
+    const double r = i / 6.0;
+    rho.push_back(r);
+    sig.push_back(std::pow(1.0 - r * r, 0.7) * (1.0 + 0.4 * r * r));
+  }
+  return {{"hertz", PressureLaw<double>::hertz()},
+          {"parabolic", PressureLaw<double>::parabolic()},
+          {"power:0.3", PressureLaw<double>::power(0.3)},
+          {"power:2.5", PressureLaw<double>::power(2.5)},
+          {"annulus:0.4", PressureLaw<double>::annulus(0.4)},
+          {"table with kinks and a step", testing::spot_cases::kinked_step_table().law},
+          {"table with an edge exponent",
+           PressureLaw<double>::tabulated(std::make_shared<const PressureTable>(rho, sig))}};
+}
+
+// Centres over the plane: the spot's centre, inside, within 1e-13..1e-1 of the rim (either
+// side), near the ends of the long axis, and far away.
+std::vector<std::array<double, 2>> centres(double q, std::uint64_t seed) {
+  Uniform u(seed);
+  std::vector<std::array<double, 2>> out = {{0.0, 0.0}};
+  for (int i = 1; i < 20; ++i) {
+    const double t = u.in(-kPi, kPi);
+    double r = 0.0;
+    switch (i % 4) {
+      case 0:
+        r = u.in(0.0, 1.0);
+        break;
+      case 1:
+        r = 1.0 + u.sign() * std::pow(10.0, u.in(-13.0, -1.0));
+        break;
+      case 2:
+        r = u.in(1.0, 3.0);
+        break;
+      default:
+        r = std::pow(10.0, u.in(0.5, 3.0));
+        break;
+    }
+    out.push_back({r * std::cos(t), q * r * std::sin(t)});
+  }
+  return out;
+}
+
+TEST(EllipseLawIntegrator, EveryLawMatchesTheRaysOnEllipsesOfAspect0_1To4) {
+  double worst = 0.0;
+  for (double q : {0.1, 0.7, 4.0}) {
+    const ContactSpot spot = ContactSpot::ellipse(q);
+    const auto uniform = std::make_shared<const SpotIntegralTable>(
+        spot, PressureLaw<double>::uniform(), q, std::function<bool()>{}, 0);
+    for (const NamedLaw& l : laws()) {
+      const EllipseLawIntegrator<SpotIntegralTable> layers(uniform, l.law, q);
+      const SpotIntegrator rays(spot, l.law, q, SpotRules{&radial_rule(), &fine_rule()});
+      const double A0 = spot_moments(spot, law_moments(l.law), q).A0;
+      for (const auto& c : centres(q, 0x1a7e5 + static_cast<std::uint64_t>(10 * q))) {
+        const auto got = layers(c[0], c[1]).channels(), want = rays(c[0], c[1]).channels();
+        for (std::size_t k = 0; k < 12; ++k) {
+          const double e = std::fabs(got[k] - want[k]) / A0;
+          worst = std::max(worst, e);
+          EXPECT_LT(e, 1e-10) << l.name << ", q " << q << ", channel " << k << " at (" << c[0]
+                              << ", " << c[1] << ")";
+        }
+      }
+    }
+  }
+  std::cout << "[ worst    ] layers vs rays, any channel / A0: " << worst << "\n";
+}
+
+}  // namespace
+}  // namespace frictionid::model
