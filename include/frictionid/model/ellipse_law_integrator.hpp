@@ -230,7 +230,8 @@ class EllipseLawIntegrator {
     if (z >= kZ || tiny || depth >= kMaxDepth) {
       const bool singular =
           tiny || end0 == End::Centre || end1 == End::Centre || (at_rim && !rim_smooth_);
-      for (const QuadratureNode& g : singular ? radial_rule() : rule(points_for(z))) {
+      for (const QuadratureNode& g :
+           singular ? radial_rule() : gauss_legendre_rule(points_for(z))) {
         const double w = w0 + 2.0 * h * g.from_left;
         // 1 - s to full precision next to the rim.
         const double omr =
@@ -250,17 +251,8 @@ class EllipseLawIntegrator {
   static int points_for(double z) {
     if (!(z > 1.0)) return kMost;
     const double rho = z + std::sqrt((z - 1.0) * (z + 1.0));
-    const double n = std::ceil(0.5 * (kLog / std::log(rho) + 6.0));
+    const double n = std::ceil(gauss_legendre_points(rho, kLog, 6));
     return n < kMost ? std::max(kLeast, static_cast<int>(n)) : kMost;
-  }
-
-  static const std::vector<QuadratureNode>& rule(int n) {
-    static const std::vector<std::vector<QuadratureNode>> rules = [] {
-      std::vector<std::vector<QuadratureNode>> r(kMost + 1);
-      for (int k = 1; k <= kMost; ++k) r[static_cast<std::size_t>(k)] = make_gauss_legendre_rule(k);
-      return r;
-    }();
-    return rules[static_cast<std::size_t>(n)];
   }
 
   std::shared_ptr<const Uniform> uniform_;

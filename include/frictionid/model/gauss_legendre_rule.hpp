@@ -48,6 +48,25 @@ inline std::vector<QuadratureNode> make_sine_squared_rule(int points) {
   return out;
 }
 
+// The n-point rule, 1 <= n <= kMaxGaussLegendrePoints, built once.
+inline constexpr int kMaxGaussLegendrePoints = 64;
+inline const std::vector<QuadratureNode>& gauss_legendre_rule(int n) {
+  static const std::vector<std::vector<QuadratureNode>> rules = [] {
+    std::vector<std::vector<QuadratureNode>> r(kMaxGaussLegendrePoints + 1);
+    for (int k = 1; k <= kMaxGaussLegendrePoints; ++k)
+      r[static_cast<std::size_t>(k)] = make_gauss_legendre_rule(k);
+    return r;
+  }();
+  return rules[static_cast<std::size_t>(n)];
+}
+
+// The points n at which an integrand analytic inside the Bernstein ellipse of parameter rho,
+// times a polynomial of `degrees`, errs by ~rho^-(2n - degrees) < exp(-log_tolerance) (not
+// rounded to a whole number or clamped).
+inline double gauss_legendre_points(double rho, double log_tolerance, int degrees) {
+  return 0.5 * (log_tolerance / std::log(rho) + degrees);
+}
+
 inline const std::vector<QuadratureNode>& smooth_piece_rule() {
   static const std::vector<QuadratureNode> rule = make_gauss_legendre_rule(16);
   return rule;

@@ -81,17 +81,6 @@ class MapStripIntegrator {
   static constexpr double kSingular = 0.01;  // a ln|a| over a piece 1e-7 wide: ~1e-20 of the cell
   static constexpr int kMaxPoints = 24;
 
-  // Gauss–Legendre rules of 1..kMaxPoints points.
-  static const std::vector<QuadratureNode>& rule(int n) {
-    static const std::vector<std::vector<QuadratureNode>> rules = [] {
-      std::vector<std::vector<QuadratureNode>> r(kMaxPoints + 1);
-      for (int k = 1; k <= kMaxPoints; ++k)
-        r[static_cast<std::size_t>(k)] = make_gauss_legendre_rule(k);
-      return r;
-    }();
-    return rules[static_cast<std::size_t>(n)];
-  }
-
   // Points for an interval whose nearest singularity lies `distance` from it, at `length`: the
   // Bernstein ellipse through a point that far beyond an end has parameter z + sqrt(z^2 - 1),
   // and the analytic factor is multiplied by a cubic (sigma0 times x^2), which the rule's degree
@@ -111,7 +100,7 @@ class MapStripIntegrator {
   }
   static int points_for_rho(double rho, int least) {
     // The error of n points is ~ rho^-(2n - 3): the cubic factor takes three of the degrees.
-    const double n = std::ceil(0.5 * (kLog / std::log(rho) + 3.0));
+    const double n = std::ceil(gauss_legendre_points(rho, kLog, 3));
     return n < kMaxPoints ? std::max(least, static_cast<int>(n)) : kMaxPoints;
   }
 
@@ -119,8 +108,8 @@ class MapStripIntegrator {
   // (degree 3 of the polynomial part in each variable, hence at least 2 points).
   void far_cell(const Cell& c, double cx, double cy, double gap, double* acc) const {
     const double hx = c.x1 - c.x0, hy = c.y1 - c.y0;
-    const std::vector<QuadratureNode>& rx = rule(points_for(gap, hx, 2));
-    const std::vector<QuadratureNode>& ry = rule(points_for(gap, hy, 2));
+    const std::vector<QuadratureNode>& rx = gauss_legendre_rule(points_for(gap, hx, 2));
+    const std::vector<QuadratureNode>& ry = gauss_legendre_rule(points_for(gap, hy, 2));
     for (const QuadratureNode& gx : rx) {
       const double x = c.x0 + hx * gx.from_left, a = x - cx;
       const double lo = c.s[0] * gx.from_right + c.s[1] * gx.from_left;
@@ -202,7 +191,7 @@ class MapStripIntegrator {
       const bool floor = dist < kFloor * hx;
       const double end = std::min(length, t + (floor ? kFloor * hx : kGrowth * dist));
       const double len = end - t;
-      piece(t, len, rule(floor ? kFloorPoints : points_for(-e - t, d, len, 3)));
+      piece(t, len, gauss_legendre_rule(floor ? kFloorPoints : points_for(-e - t, d, len, 3)));
       t = end;
     }
   }
