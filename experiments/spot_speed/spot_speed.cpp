@@ -5,14 +5,16 @@
 //   spot_speed [--repeat N]      # run.sh builds and runs it
 //
 // For ellipse:0.6 with the Hertz law, rect:0.7 with the parabolic law, the slow ellipses (Hertz
-// at q = 0.1 and 4) and pressure maps (data/footprint_map.csv, 13 x 9, and a random 15 x 15
-// grid): the table's build on 1 and 2 threads (wall and process CPU time, median of N builds;
-// of min(N, 3) for the builds over 1 s), its size, and the time of one evaluation of the twelve
-// integrals by the table, by SpotIntegrator (the model's path) and by the strip integrators that
-// give the table its points (RectStripIntegrator, MapStripIntegrator), each the median CPU time
-// of N passes over 256 fixed centres of rotation (|c| log-uniform in [0.01, 1000] units of R, any
-// direction), on one thread. The table's largest difference from SpotIntegrator at its fine
-// angular rule over those centres is printed as a check.
+// at q = 0.1 and 4), table laws of 41 and 201 samples (a modulated Hertz profile) and pressure
+// maps (data/footprint_map.csv, 13 x 9, and a random 15 x 15 grid): the table's build on 1 and 2
+// threads (wall and process CPU time, median of N builds; of min(N, 3) for the builds over 1 s),
+// its size, and the time of one evaluation of the twelve integrals by the table, by
+// SpotIntegrator (rays) and by what gives the table its points (RectStripIntegrator,
+// MapStripIntegrator, or for a table law on an ellipse EllipseLawIntegrator through
+// SpotPointIntegrator), each the median CPU time of N passes over 256 fixed centres of rotation
+// (|c| log-uniform in [0.01, 1000] units of R, any direction), on one thread. The table's
+// largest difference over those centres from SpotIntegrator at its fine angular rule (for a
+// table law: from the model's points, layers or strips) is printed as a check.
 //
 //   spot_speed [--repeat N] [--root DIR]   # DIR: the repository, for data/footprint_map.csv
 #include <algorithm>
@@ -32,7 +34,9 @@
 #include <string>
 #include <vector>
 
+#include <frictionid/model/pressure_table.hpp>
 #include <frictionid/model/spot_integral_table.hpp>
+#include <frictionid/model/spot_point_integrator.hpp>
 
 using namespace frictionid::model;
 
@@ -133,6 +137,18 @@ std::shared_ptr<PressureMap> random_map() {
   return m;
 }
 
+// A Hertz profile modulated by 1 + 0.3 sin(7 rho), sampled at `samples` equal steps: every
+// sample a kink of the interpolant.
+PressureLaw<double> sampled_law(int samples) {
+  std::vector<double> rho, sigma;
+  for (int i = 0; i < samples; ++i) {
+    const double r = i / static_cast<double>(samples - 1);
+    rho.push_back(r);
+    sigma.push_back(std::sqrt(1.0 - r * r) * (1.0 + 0.3 * std::sin(7.0 * r)));
+  }
+  return PressureLaw<double>::tabulated(std::make_shared<const PressureTable>(rho, sigma));
+}
+
 void run(const std::string& name, const ContactSpot& spot, const PressureLaw<double>& law,
          int repeat) {
   const double q = spot.q;
@@ -157,6 +173,7 @@ void run(const std::string& name, const ContactSpot& spot, const PressureLaw<dou
   const double t_rays = per_call([&](double x, double y) { return integrate(x, y); }, repeat);
   std::string strips = "–";
   char buf[32];
+  const bool layers = spot.kind == SpotKind::Ellipse && law.kind == PressureKind::Table;
   if (spot.kind == SpotKind::Rect) {
     const RectStripIntegrator s(law, q);
     std::snprintf(buf, sizeof buf, "%.1f us",
@@ -167,13 +184,23 @@ void run(const std::string& name, const ContactSpot& spot, const PressureLaw<dou
     std::snprintf(buf, sizeof buf, "%.1f us",
                   per_call([&](double x, double y) { return s(x, y); }, repeat));
     strips = buf;
+  } else if (layers) {
+    const SpotPointIntegrator s(spot, law, q);  // layers of the uniform ellipse
+    std::snprintf(buf, sizeof buf, "%.1f us (layers)",
+                  per_call([&](double x, double y) { return s(x, y); }, repeat));
+    strips = buf;
   }
-  // The check: the table against the rays at their fine angular rule, relative to A0.
+  // The check, relative to A0: the table against the rays at their fine angular rule, or for a
+  // table law (whose rays keep at most 64 samples as cuts) against the model's points: layers on
+  // an ellipse, strips on a rectangle, each exact for any number of samples.
   const SpotIntegrator fine(spot, law, q, SpotRules{&radial_rule(), &fine_rule()});
+  const SpotPointIntegrator points(spot, law, q);
   const double A0 = spot_moments(spot, law_moments(law), q).A0;
   double worst = 0.0;
   for (const auto& c : centres()) {
-    const SpotIntegrals a = table(c[0], c[1]), b = fine(c[0], c[1]);
+    const bool by_points = law.kind == PressureKind::Table;
+    const SpotIntegrals a = table(c[0], c[1]),
+                        b = by_points ? points(c[0], c[1]) : fine(c[0], c[1]);
     for (std::size_t w = 0; w < 3; ++w)
       worst = std::max({worst, std::fabs(a.ex[w] - b.ex[w]), std::fabs(a.ey[w] - b.ey[w]),
                         std::fabs(a.x_ey[w] - b.x_ey[w]), std::fabs(a.y_ex[w] - b.y_ex[w])});
@@ -201,12 +228,16 @@ int main(int argc, char** argv) {
   }
   std::printf(
       "| spot, law | build, 1 thread | build, 2 threads | points | pieces | size | table | "
-      "SpotIntegrator | strips (the build's points) | table - rays (of A0) |\n");
+      "SpotIntegrator (rays) | the build's points (strips, layers) | table - reference (of A0) "
+      "|\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   run("ellipse:0.6, hertz", ContactSpot::ellipse(0.6), PressureLaw<double>::hertz(), repeat);
   run("rect:0.7, parabolic", ContactSpot::rect(0.7), PressureLaw<double>::parabolic(), repeat);
   run("ellipse:0.1, hertz", ContactSpot::ellipse(0.1), PressureLaw<double>::hertz(), repeat);
   run("ellipse:4, hertz", ContactSpot::ellipse(4.0), PressureLaw<double>::hertz(), repeat);
+  run("ellipse:0.7, table of 41 samples", ContactSpot::ellipse(0.7), sampled_law(41), repeat);
+  run("ellipse:0.7, table of 201 samples", ContactSpot::ellipse(0.7), sampled_law(201), repeat);
+  run("rect:0.7, table of 201 samples", ContactSpot::rect(0.7), sampled_law(201), repeat);
   run("map, footprint 13 x 9",
       ContactSpot::pressure_map(read_map(root + "/data/footprint_map.csv")),
       PressureLaw<double>::uniform(), repeat);
