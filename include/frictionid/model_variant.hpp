@@ -92,8 +92,8 @@ inline std::shared_ptr<const model::RingIntegralTable> ring_table_for_rows(
 // Rows from which a tabulated spot (spot_integral_table.hpp) beats integrating every row: an
 // ellipse's or a rectangle's build costs about as much as 1000 rows integrated (0.05-0.4 s of
 // CPU time); a map's as much as 100,000 (3 s for a 13 x 9 map, whose rows integrate in 35 us),
-// and so does a table law's (4-18 s: its every sample is a line the table's cells resolve, where
-// its rows integrate in 0.1-0.5 ms).
+// and so does a table law's (3.6-6 s for 41-201 samples: its every sample is a line the table's
+// cells resolve, where its rows integrate in 0.2-0.6 ms).
 inline constexpr std::size_t kSpotTableMinRows = 2000;
 inline constexpr std::size_t kMapTableMinRows = 100000;
 

@@ -1,5 +1,5 @@
 // The twelve spot integrals of an ellipse under any pressure law with a density, from those of
-// the uniform ellipse (docs/physics.md §9.3, "Any law from the uniform ellipse").
+// the uniform ellipse (docs/physics.md §9.3, "Any law on an ellipse from the uniform one").
 //
 // sigma0 = law(rho_e) is a stack of uniform elliptic layers: with L(s) the law,
 //   L(rho_e) = L(1) + sum over jumps J_k [rho_e < s_k] + ∫_0^1 (-L'(s)) [rho_e < s] ds,

@@ -60,8 +60,8 @@
 // The points. Ellipse: SpotIntegrator, with rules chosen for the law (node_rules: Gauss-Legendre,
 // exact where sigma0 is a polynomial along a ray; a sine-squared substitution for Hertz and
 // powers >= 1); under a table law, layers of the uniform ellipse (ellipse_law_integrator.hpp)
-// from that ellipse's own table, built first (0.1-0.5 ms a point, any number of samples; the
-// table then takes 10,000-45,000 points, every sample a line its cells resolve). Rectangle:
+// from that ellipse's own table, built first (0.2-0.6 ms a point, any number of samples; the
+// table then takes 9,000-30,000 points, every sample a line its cells resolve). Rectangle:
 // RectStripIntegrator, the y-integral in closed form: 10-30 us a point, and exact next to the
 // corners, where SpotIntegrator's default angular rule errs by up to 5e-9 A0.
 //
