@@ -171,34 +171,25 @@ void run(const std::string& name, const ContactSpot& spot, const PressureLaw<dou
   const SpotIntegrator integrate(spot, law, q);
   const double t_table = per_call([&](double x, double y) { return table(x, y); }, 5 * repeat);
   const double t_rays = per_call([&](double x, double y) { return integrate(x, y); }, repeat);
+  // What gives the table its points, SpotPointIntegrator's choice: strips on a rectangle or a
+  // map, layers of the uniform ellipse for a table law on an ellipse (rays otherwise, timed
+  // above).
+  const SpotPointIntegrator points(spot, law, q);
+  const bool by_points = law.kind == PressureKind::Table;
   std::string strips = "–";
-  char buf[32];
-  const bool layers = spot.kind == SpotKind::Ellipse && law.kind == PressureKind::Table;
-  if (spot.kind == SpotKind::Rect) {
-    const RectStripIntegrator s(law, q);
-    std::snprintf(buf, sizeof buf, "%.1f us",
-                  per_call([&](double x, double y) { return s(x, y); }, repeat));
-    strips = buf;
-  } else if (spot.kind == SpotKind::Map) {
-    const MapStripIntegrator s(*spot.map);
-    std::snprintf(buf, sizeof buf, "%.1f us",
-                  per_call([&](double x, double y) { return s(x, y); }, repeat));
-    strips = buf;
-  } else if (layers) {
-    const SpotPointIntegrator s(spot, law, q);  // layers of the uniform ellipse
-    std::snprintf(buf, sizeof buf, "%.1f us (layers)",
-                  per_call([&](double x, double y) { return s(x, y); }, repeat));
+  if (spot.kind == SpotKind::Rect || spot.kind == SpotKind::Map || by_points) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, spot.kind == SpotKind::Ellipse ? "%.1f us (layers)" : "%.1f us",
+                  per_call([&](double x, double y) { return points(x, y); }, repeat));
     strips = buf;
   }
   // The check, relative to A0: the table against the rays at their fine angular rule, or for a
-  // table law (whose rays keep at most 64 samples as cuts) against the model's points: layers on
-  // an ellipse, strips on a rectangle, each exact for any number of samples.
+  // table law (whose rays keep at most 64 samples as cuts) against those points, exact for any
+  // number of samples.
   const SpotIntegrator fine(spot, law, q, SpotRules{&radial_rule(), &fine_rule()});
-  const SpotPointIntegrator points(spot, law, q);
   const double A0 = spot_moments(spot, law_moments(law), q).A0;
   double worst = 0.0;
   for (const auto& c : centres()) {
-    const bool by_points = law.kind == PressureKind::Table;
     const SpotIntegrals a = table(c[0], c[1]),
                         b = by_points ? points(c[0], c[1]) : fine(c[0], c[1]);
     for (std::size_t w = 0; w < 3; ++w)

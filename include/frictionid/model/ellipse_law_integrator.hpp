@@ -56,8 +56,11 @@ class EllipseLawIntegrator {
         q_(q),
         rim_value_(law(1.0, 0.0)),
         jumps_(law_jumps(law)) {
+    // The s-range's cuts: the law's breakpoints (ascending) between 0 and 1.
+    cuts_.push_back(0.0);
     for (double b : law.breakpoints())
-      if (b > 0.0 && b < 1.0) breaks_.push_back(b);
+      if (b > cuts_.back() && b < 1.0) cuts_.push_back(b);
+    cuts_.push_back(1.0);
     const double gamma = law_rim_exponent(law);
     density_ = law.kind == PressureKind::Hertz || law.kind == PressureKind::Parabolic ||
                law.kind == PressureKind::Table ||
@@ -174,12 +177,8 @@ class EllipseLawIntegrator {
 
   void slopes(double cx, double cy, double* acc) const {
     const Centre c{cx, cy, std::hypot(cx, cy), std::hypot(cx, cy / q_)};
-    std::vector<double> cuts = {0.0, 1.0};
-    cuts.insert(cuts.end(), breaks_.begin(), breaks_.end());
-    std::sort(cuts.begin(), cuts.end());
-    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-      const double a = cuts[k], b = cuts[k + 1];
+    for (std::size_t k = 0; k + 1 < cuts_.size(); ++k) {
+      const double a = cuts_[k], b = cuts_[k + 1];
       const bool inside = c.re > a && c.re < b;  // rho_e cuts this piece
       if (b == 1.0 && rim_power_ > 1 && inside && c.re - a > kNearRim * (1.0 - a)) {
         // rho_e next to the rim: cut in w (w = 0 at the rim), where it keeps its distance from
@@ -250,8 +249,7 @@ class EllipseLawIntegrator {
   // s^(2+d), degree 6) takes six of the rule's degrees.
   static int points_for(double z) {
     if (!(z > 1.0)) return kMost;
-    const double rho = z + std::sqrt((z - 1.0) * (z + 1.0));
-    const double n = std::ceil(gauss_legendre_points(rho, kLog, 6));
+    const double n = std::ceil(gauss_legendre_points(bernstein_parameter(z), kLog, 6));
     return n < kMost ? std::max(kLeast, static_cast<int>(n)) : kMost;
   }
 
@@ -260,7 +258,7 @@ class EllipseLawIntegrator {
   double q_;
   double rim_value_;
   std::vector<PressureTable::Jump> jumps_;
-  std::vector<double> breaks_;
+  std::vector<double> cuts_;
   bool density_ = false;
   int rim_power_ = 1;
   bool rim_smooth_ = true;

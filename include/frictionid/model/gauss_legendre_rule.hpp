@@ -60,6 +60,14 @@ inline const std::vector<QuadratureNode>& gauss_legendre_rule(int n) {
   return rules[static_cast<std::size_t>(n)];
 }
 
+// The parameter rho = z + sqrt(z^2 - 1) of the Bernstein ellipse (foci at the ends of the
+// interval, scaled to [-1, 1]) whose semi-major axis is z >= 1: the one through a point z
+// half-lengths from the interval's middle along its line, or with z the half sum of the
+// distances from a point to the two ends.
+inline double bernstein_parameter(double z) {
+  return z + std::sqrt((z - 1.0) * (z + 1.0));
+}
+
 // The points n at which an integrand analytic inside the Bernstein ellipse of parameter rho,
 // times a polynomial of `degrees`, errs by ~rho^-(2n - degrees) < exp(-log_tolerance) (not
 // rounded to a whole number or clamped).

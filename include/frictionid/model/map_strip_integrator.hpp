@@ -87,7 +87,7 @@ class MapStripIntegrator {
   // 2n - 1 must carry too.
   static int points_for(double distance, double length, int least) {
     const double z = 1.0 + 2.0 * distance / length;
-    return points_for_rho(z + std::sqrt((z - 1.0) * (z + 1.0)), least);
+    return points_for_rho(bernstein_parameter(z), least);
   }
   // The same for a singularity at (re, im) from the start of a piece of that length.
   // The ellipse with foci +-1 through z has parameter rho = a + sqrt(a^2 - 1), a the half sum of
@@ -96,7 +96,7 @@ class MapStripIntegrator {
     const double zr = (2.0 * re - length) / length, zi = 2.0 * im / length;
     const double a =
         0.5 * (std::sqrt((zr - 1) * (zr - 1) + zi * zi) + std::sqrt((zr + 1) * (zr + 1) + zi * zi));
-    return points_for_rho(a + std::sqrt((a - 1.0) * (a + 1.0)), least);
+    return points_for_rho(bernstein_parameter(a), least);
   }
   static int points_for_rho(double rho, int least) {
     // The error of n points is ~ rho^-(2n - 3): the cubic factor takes three of the degrees.

@@ -72,8 +72,12 @@ class PressureTable {
                                   g_.begin() + static_cast<std::ptrdiff_t>(i));
       const std::vector<double> d = monotone_slopes(x, y);
       std::copy(d.begin(), d.end(), slope_.begin() + static_cast<std::ptrdiff_t>(start));
-      if (i < used && g_[i] != g_[i - 1] && rho_[i] > 0.0 && rho_[i] < 1.0)
+      if (i < used && g_[i] != g_[i - 1] && rho_[i] > 0.0 && rho_[i] < 1.0) {
         steps_.push_back(rho_[i]);
+        const double edge =
+            gamma_ == 0.0 ? 1.0 : std::pow((1.0 - rho_[i]) * (1.0 + rho_[i]), gamma_);
+        jumps_.push_back({rho_[i], edge * (g_[i - 1] - g_[i])});
+      }
       start = i;
     }
     for (double r : rho_)
@@ -109,16 +113,7 @@ class PressureTable {
   struct Jump {
     double rho, drop;
   };
-  std::vector<Jump> jumps() const {
-    std::vector<Jump> out;
-    for (std::size_t i = 1; i < rho_.size(); ++i)
-      if (rho_[i] == rho_[i - 1] && g_[i] != g_[i - 1] && rho_[i] > 0.0 && rho_[i] < 1.0) {
-        const double edge =
-            gamma_ == 0.0 ? 1.0 : std::pow((1.0 - rho_[i]) * (1.0 + rho_[i]), gamma_);
-        out.push_back({rho_[i], edge * (g_[i - 1] - g_[i])});
-      }
-    return out;
-  }
+  const std::vector<Jump>& jumps() const { return jumps_; }
 
   // How strongly sigma0 kinks at each sample inside a run: the jump of its second derivative
   // there (its interpolant is C^1), largest first. A spot's table grades its cells at the
@@ -214,6 +209,7 @@ class PressureTable {
   double gamma_ = 0.0;
   std::vector<double> rho_, g_, slope_;
   std::vector<double> breakpoints_, steps_;
+  std::vector<Jump> jumps_;  // at the steps: sigma0 just inside minus just outside
 };
 
 }  // namespace frictionid::model

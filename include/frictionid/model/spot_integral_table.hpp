@@ -231,8 +231,7 @@ class RectStripIntegrator {
   // `degrees` of the rule's), 0 when it would take more than kMost.
   static int points_for(double distance, double length, int degrees = 6) {
     const double z = 1.0 + 2.0 * distance / length;
-    const double n =
-        std::ceil(gauss_legendre_points(z + std::sqrt((z - 1.0) * (z + 1.0)), kLog, degrees));
+    const double n = std::ceil(gauss_legendre_points(bernstein_parameter(z), kLog, degrees));
     return n <= kMost ? std::max(kLeast, static_cast<int>(n)) : 0;
   }
 

@@ -56,13 +56,13 @@ class SpotPointIntegrator {
   SpotPointIntegrator(const ContactSpot& spot, const PressureLaw<double>& law, double q,
                       SpotRules rules = {}) {
     const bool default_rules = rules.radial == &radial_rule() && rules.angular == &radial_rule();
+    const double aspect = spot.has_aspect() ? q : 1.0;
     if (spot.kind == SpotKind::Rect && law.kind != PressureKind::Ring)
       strips_.emplace(law, q);
     else if (spot.kind == SpotKind::Map && spot.map)
       map_strips_.emplace(*spot.map);
     else if (law.kind == PressureKind::Table && default_rules)
-      layers_.emplace(uniform_ellipse_table(spot.has_aspect() ? q : 1.0), law,
-                      spot.has_aspect() ? q : 1.0);
+      layers_.emplace(uniform_ellipse_table(aspect), law, aspect);
     else {
       rays_.emplace(spot, law, q, rules);
       moments_ = spot_moments(spot, law_moments(law), q);
