@@ -186,7 +186,7 @@ void run(const std::string& name, const ContactSpot& spot, const PressureLaw<dou
   // The check, relative to A0: the table against the rays at their fine angular rule, or for a
   // table law (whose rays keep at most 64 samples as cuts) against those points, exact for any
   // number of samples.
-  const SpotIntegrator fine(spot, law, q, SpotRules{&radial_rule(), &fine_rule()});
+  const SpotIntegrator fine(spot, law, q, SpotRules{&radial_rule(), &fine_rule(), false, false});
   const double A0 = spot_moments(spot, law_moments(law), q).A0;
   double worst = 0.0;
   for (const auto& c : centres()) {

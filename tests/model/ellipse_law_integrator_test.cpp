@@ -90,7 +90,8 @@ TEST(EllipseLawIntegrator, EveryLawMatchesTheRaysOnEllipsesOfAspect0_1To4) {
         spot, PressureLaw<double>::uniform(), q, std::function<bool()>{}, 0);
     for (const NamedLaw& l : laws()) {
       const EllipseLawIntegrator<SpotIntegralTable> layers(uniform, l.law, q);
-      const SpotIntegrator rays(spot, l.law, q, SpotRules{&radial_rule(), &fine_rule()});
+      const SpotIntegrator rays(spot, l.law, q,
+                                SpotRules{&radial_rule(), &fine_rule(), false, false});
       const double A0 = spot_moments(spot, law_moments(l.law), q).A0;
       for (const auto& c : centres(q, 0x1a7e5 + static_cast<std::uint64_t>(10 * q))) {
         const auto got = layers(c[0], c[1]).channels(), want = rays(c[0], c[1]).channels();

@@ -177,7 +177,11 @@ struct Reference {
   SpotIntegrator rays;
   Reference(const ContactSpot& s, const PressureLaw<double>& l, double aspect,
             const std::vector<QuadratureNode>* angular = &fine_rule())
-      : spot(s), law(l), q(aspect), rays(s, l, aspect, SpotRules{&radial_rule(), angular}) {}
+      // The rule along the rays (closed_rays false), not the closed forms the table takes.
+      : spot(s),
+        law(l),
+        q(aspect),
+        rays(s, l, aspect, SpotRules{&radial_rule(), angular, false, false}) {}
   SpotIntegrals operator()(double cx, double cy) const {
     const SpotKind kind = spot.kind == SpotKind::Rect ? SpotKind::Rect : SpotKind::Ellipse;
     if (std::hypot(cx, cy) > 50.0 * max_radius(kind, q))
