@@ -279,6 +279,31 @@ TEST(SpotIntegralTable, OtherLawsMatchTheIntegratorToo) {
   }
 }
 
+// An annulus on an ellipse reads the uniform ellipse's table at c and c/B: held to its own load
+// (1 - B^2) A0 however thin the annulus and however elongated the ellipse, the step's ellipse
+// included.
+TEST(SpotIntegralTable, AnAnnulusFromTheUniformEllipseHoldsForAnyInnerRadiusAndAspect) {
+  struct Case {
+    double q, B;
+  };
+  for (const Case& c : {Case{0.15, 0.95}, Case{0.7, 0.75}, Case{3.5, 0.3}}) {
+    const ContactSpot spot = ContactSpot::ellipse(c.q);
+    const NamedLaw law{"annulus:" + std::to_string(c.B), PressureLaw<double>::annulus(c.B)};
+    const SpotIntegralTable& table = table_for(spot, law);
+    auto centres = sample_centres(SpotKind::Ellipse, c.q, 90, 29);
+    Uniform u(37);
+    for (int i = 0; i < 30; ++i) {  // within 1e-8..1e-1 of the step, either side
+      const double t = u.in(-kPi, kPi);
+      const double r = c.B * (1.0 + u.sign() * std::pow(10.0, u.in(-8.0, -1.0)));
+      centres.push_back({r * std::cos(t), c.q * r * std::sin(t)});
+    }
+    const Reference reference(spot, law.law, c.q);
+    const Worst w = compare(table, reference, centres, area(spot, law.law, c.q));
+    EXPECT_LT(w.error, kTolerance) << law.name << " q " << c.q << ": channel " << w.channel
+                                   << " at (" << w.cx << ", " << w.cy << ")";
+  }
+}
+
 TEST(SpotIntegralTable, EachIntegralIsEvenOrOddInEachCoordinateOfTheCentre) {
   // Reflecting x turns e_y and the weight x; reflecting y turns e_x and the weight y. Channels:
   // ex[0..2], ey[0..2], x_ey[0..2], y_ex[0..2].

@@ -57,11 +57,14 @@
 // 18: 66,000 for the 13 x 9 footprint, 3.0-3.2 s of CPU time at ~45 us a point; 190,000 and
 // 16 s for a rough random 15 x 15 grid).
 //
-// The points. Ellipse: SpotIntegrator, with rules chosen for the law (node_rules: Gauss-Legendre,
-// exact where sigma0 is a polynomial along a ray; a sine-squared substitution for Hertz and
-// powers >= 1); under a table law, layers of the uniform ellipse (ellipse_law_integrator.hpp)
-// from that ellipse's own table, built first (0.2-0.6 ms a point, any number of samples; the
-// table then takes 9,000-30,000 points, every sample a line its cells resolve). Rectangle:
+// The points. Ellipse: SpotIntegrator, whose rays are closed forms under the power laws
+// (uniform, Hertz, parabolic, power:n: 15-40 us a point); under a table law, layers of the
+// uniform ellipse (ellipse_law_integrator.hpp) from that ellipse's own table, built first
+// (0.2-0.6 ms a point, any number of samples; the table then takes 9,000-30,000 points, every
+// sample a line its cells resolve). An annulus has no points of its own: it is the uniform
+// ellipse less the one scaled by its inner radius, two readings of the uniform table (built to
+// a tolerance tightened by (1 - B^2)/(1 + B^2), the annulus' load over what the two carry).
+// Rectangle:
 // RectStripIntegrator, the y-integral in closed form: 10-30 us a point, and exact next to the
 // corners, where SpotIntegrator's default angular rule errs by up to 5e-9 A0.
 //
@@ -295,6 +298,14 @@ class SpotIntegralTable {
 
   SpotIntegralTable(const ContactSpot& spot, const PressureLaw<double>& law, double q,
                     const std::function<bool()>& stop, const SpotParallelFor& parallel)
+      : SpotIntegralTable(spot, law, q, stop, parallel, 1.0) {}
+
+ private:
+  // The same with every tolerance `tighter` times its own (a table that others take
+  // differences of).
+  SpotIntegralTable(const ContactSpot& spot, const PressureLaw<double>& law, double q,
+                    const std::function<bool()>& stop, const SpotParallelFor& parallel,
+                    double tighter)
       : kind_(spot.kind == SpotKind::Map    ? SpotKind::Map
               : spot.kind == SpotKind::Rect ? SpotKind::Rect
                                             : SpotKind::Ellipse),
@@ -307,6 +318,7 @@ class SpotIntegralTable {
     const SpotMoments<double> m = spot_moments(spot, law_moments(law), q_);
     if (!(m.A0 > 0.0)) throw std::invalid_argument("the spot carries no load");
     A0_ = m.A0;
+    scale_ = tighter * m.A0;
     Ax_ = m.Ax;
     Ay_ = m.Ay;
     Axx_ = m.Axx;
@@ -316,6 +328,20 @@ class SpotIntegralTable {
     const RectStripIntegrator strips(law, q_);
     const PressureMap none;
     const MapStripIntegrator map_strips(map_ ? *map_ : none);
+    // An annulus on an ellipse is the uniform ellipse less the one scaled by B (physics.md
+    // (9.8)): U(c) - B^(2+d) U(c/B), two readings of the uniform ellipse's table, where a table
+    // of its own resolves the step's ellipse (4x the points at q = 0.1).
+    if (kind_ == SpotKind::Ellipse && law.kind == PressureKind::Annulus) {
+      const double B = law.inner_radius();
+      // Its error, e(c) + B^(2+d) e(c/B), is held to the annulus' own load (1 - B^2) A0.
+      uniform_.reset(new SpotIntegralTable(ContactSpot::ellipse(q_), PressureLaw<double>::uniform(),
+                                           q_, stop, parallel, (1.0 - B * B) / (1.0 + B * B)));
+      inner_ = B;
+      for (int j = 0; j < kChannels; ++j) inner_weight_[j] = std::pow(B, 2 + kDegree[j]);
+      stats_ = uniform_->stats();
+      stats_.layer_points = stats_.points;
+      return;
+    }
     // A table law on an ellipse: its points from the uniform ellipse's table, layer by layer.
     std::optional<EllipseLawIntegrator<SpotIntegralTable>> layers;
     if (kind_ == SpotKind::Ellipse && law.kind == PressureKind::Table) {
@@ -328,6 +354,7 @@ class SpotIntegralTable {
         .run();
   }
 
+ public:
   // The integrals for the centre of rotation at physical (cx, cy), units of R.
   SpotIntegrals operator()(double cx, double cy) const {
     return SpotIntegrals::from_channels(channels_at(cx, cy).data());
@@ -337,6 +364,12 @@ class SpotIntegralTable {
   // the channels then carry the interpolant's derivatives along them.
   template <typename E>
   std::array<E, kChannels> channels_at(const E& cx, const E& cy) const {
+    if (uniform_) {  // an annulus: U(c) - B^(2+d) U(c/B)
+      std::array<E, kChannels> v = uniform_->channels_at(cx, cy);
+      const std::array<E, kChannels> in = uniform_->channels_at(E(cx / inner_), E(cy / inner_));
+      for (int j = 0; j < kChannels; ++j) v[j] -= inner_weight_[j] * in[j];
+      return v;
+    }
     std::array<E, kChannels> v;
     if (kind_ == SpotKind::Map) {
       evaluate(cx, cy, v.data());  // a map has no symmetry: the whole plane is tabulated
@@ -397,8 +430,10 @@ class SpotIntegralTable {
   static constexpr double kCornerInset = 0.7;       // graded width / corner radius (< 1/sqrt 2)
   static constexpr double kCornerAngle = M_PI / 4;  // graded angle next to a line's direction
   static constexpr double kSqueeze = 0.3;  // grade the reference angle when atanh(q) is smaller
-  static constexpr int kSineSquaredPoints = 28;
   static constexpr std::size_t kMaxGradedBreaks = 8;
+
+  // The degree of each channel's weight (ex[w], ey[w]: 1, x, y; x_ey[w], y_ex[w] one more).
+  static constexpr int kDegree[kChannels] = {0, 1, 1, 0, 1, 1, 1, 2, 2, 1, 2, 2};
 
   // Which channels change sign with c_x and with c_y.
   static constexpr bool kOddX[kChannels] = {false, true, false, true,  false, true,
@@ -408,47 +443,21 @@ class SpotIntegralTable {
 
   // --- The points' rules ------------------------------------------------------------------------
 
-  // Along a ray, sigma0 of a uniform, parabolic or annulus law (power:N with a whole N <= 4) is a
-  // polynomial in r between the cuts, and so is the integrand (degree 2N + 3 with the weights):
-  // Gauss–Legendre with N + 3 points is exact there and ~10x cheaper than tanh-sinh. Hertz and
-  // any other power N >= 1 take the sine-squared rule (1e-13 for power:1.7, at half the cost of
-  // tanh-sinh); a power below 1 keeps tanh-sinh. The ring law's integral runs over the rim's
-  // reference angle, whose integrand turns on the scale of the aspect near the long axis: the
-  // default rule errs by 1e-8 A0 at q = 0.7 and the fine one by 3e-7 at q = 0.3; step 1/64 stays
-  // below 1e-13 for 0.3 <= q <= 4.
+  // Which laws reach SpotIntegrator here: on an ellipse the power laws (uniform, Hertz,
+  // parabolic, power:n), whose rays are closed forms (SpotIntegrator::power_ray), and the ring;
+  // on a rectangle only the ring (the others by strips). An annulus comes from the uniform
+  // ellipse's table and a table law from layers of it. The ring law's integral runs over the
+  // rim's reference angle, whose integrand turns on the scale of the aspect near the long axis:
+  // the default rule errs by 1e-8 A0 at q = 0.7 and the fine one by 3e-7 at q = 0.3; step 1/64
+  // stays below 1e-13 for 0.3 <= q <= 4.
   static SpotRules node_rules(SpotKind kind, const PressureLaw<double>& law) {
     SpotRules r;
-    int n = -1;
-    if (law.kind == PressureKind::Uniform || law.kind == PressureKind::Annulus) n = 0;
-    if (law.kind == PressureKind::Parabolic) n = 1;
-    if (law.kind == PressureKind::Power && law.n >= 0.0 && law.n <= 4.0 &&
-        law.n == std::floor(law.n))
-      n = static_cast<int>(law.n);
-    if (n >= 0) r.radial = &gauss_rule(n + 3);
-    const bool half = law.kind == PressureKind::Hertz ||
-                      (law.kind == PressureKind::Power && n < 0 && (law.n >= 1.0 || law.n == 0.5));
-    if (half) r.radial = &sine_squared_rule();
     if (kind == SpotKind::Rect) r.angular = &fine_rule();
     if (law.kind == PressureKind::Ring) {
       static const std::vector<QuadratureNode> rim = make_tanh_sinh_rule(1.0 / 64.0, 1e-30);
       r.angular = &rim;
     }
     return r;
-  }
-
-  // Gauss–Legendre in t with r = sin^2(pi t/2): sqrt(r) and sqrt(1 - r) become sin and cos, so an
-  // integrand with a square-root end turns analytic. 28 points keep the integrals within 1e-11 of
-  // A0 where tanh-sinh takes 51.
-  static const std::vector<QuadratureNode>& sine_squared_rule() {
-    static const std::vector<QuadratureNode> rule = make_sine_squared_rule(kSineSquaredPoints);
-    return rule;
-  }
-
-  static const std::vector<QuadratureNode>& gauss_rule(int points) {
-    static const std::vector<QuadratureNode> rules[] = {
-        make_gauss_legendre_rule(3), make_gauss_legendre_rule(4), make_gauss_legendre_rule(5),
-        make_gauss_legendre_rule(6), make_gauss_legendre_rule(7)};
-    return rules[points - 3];
   }
 
   // --- The table --------------------------------------------------------------------------------
@@ -1114,7 +1123,7 @@ class SpotIntegralTable {
         for (int k = 0; k <= s.n0; ++k)
           for (std::size_t ch = 0; ch < kChannels; ++ch) {
             double& slot = m[static_cast<std::size_t>(dir == 0 ? k : l)];
-            slot = std::max(slot, std::fabs(s.at(k, l)[ch]) / t.A0_);
+            slot = std::max(slot, std::fabs(s.at(k, l)[ch]) / t.scale_);
           }
       return m;
     }
@@ -1164,7 +1173,7 @@ class SpotIntegralTable {
       const Values at = sum(s, kCheckX, kCheckY);
       double miss = 0.0;
       for (std::size_t ch = 0; ch < kChannels; ++ch)
-        miss = std::max(miss, std::fabs(at[ch] - c.check[ch]) / t.A0_);
+        miss = std::max(miss, std::fabs(at[ch] - c.check[ch]) / t.scale_);
       bool bad0 = e0 > kSampleTolerance, bad1 = e1 > kSampleTolerance;
       if (!bad0 && !bad1 && miss > kCheckTolerance) {
         bad0 = n0 >= n1;
@@ -1255,8 +1264,8 @@ class SpotIntegralTable {
             else if (l > kStoreDegree)
               d1 += std::fabs(r.at(k, l)[ch]);
           }
-        drop0 = std::max(drop0, d0 / A0_);
-        drop1 = std::max(drop1, d1 / A0_);
+        drop0 = std::max(drop0, d0 / scale_);
+        drop1 = std::max(drop1, d1 / scale_);
       }
       const bool cut0 = drop0 > 0.25 * kStoreTolerance, cut1 = drop1 > 0.25 * kStoreTolerance;
       if (!cut0 && !cut1) {
@@ -1294,7 +1303,7 @@ class SpotIntegralTable {
               coeff_.size(),
               {}};
     const int n0 = std::min(r.n0, kStoreDegree), n1 = std::min(r.n1, kStoreDegree);
-    double floor = 0.5 * kStoreTolerance * A0_;
+    double floor = 0.5 * kStoreTolerance * scale_;
     std::vector<int> len;
     for (;;) {
       len.assign(static_cast<std::size_t>(n1 + 1), 0);
@@ -1310,7 +1319,7 @@ class SpotIntegralTable {
           }
           for (std::size_t ch = 0; ch < kChannels; ++ch) dropped[ch] += std::fabs(r.at(k, l)[ch]);
         }
-      if (*std::max_element(dropped, dropped + kChannels) <= 0.5 * kStoreTolerance * A0_) break;
+      if (*std::max_element(dropped, dropped + kChannels) <= 0.5 * kStoreTolerance * scale_) break;
       floor *= 0.25;
     }
     int rows = 1;
@@ -1333,13 +1342,18 @@ class SpotIntegralTable {
   double q_;
   std::shared_ptr<const PressureMap> map_;  // a map's table: its map
   double A0_ = 1.0, Ax_ = 0.0, Ay_ = 0.0, Axx_ = 0.0, Axy_ = 0.0, Ayy_ = 0.0;
-  double near_ = 0.0;           // the polar patch's radius P_near, or the box's side R_near
+  double scale_ = 1.0;  // the unit of the tolerances: A0, or less (see the private constructor)
+  double near_ = 0.0;   // the polar patch's radius P_near, or the box's side R_near
   std::vector<Patch> patches_;  // ellipse: polar, far; rectangle: box, far, corners
   std::vector<Root> roots_;
   std::vector<TreeNode> tree_;
   std::vector<Leaf> leaves_;
   std::vector<double> coeff_;
   Stats stats_;
+  // An annulus on an ellipse: the uniform ellipse's table, B and B^(2+d) per channel.
+  std::shared_ptr<const SpotIntegralTable> uniform_;
+  double inner_ = 1.0;
+  std::array<double, kChannels> inner_weight_{};
 };
 
 }  // namespace frictionid::model
