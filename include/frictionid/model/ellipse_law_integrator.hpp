@@ -37,6 +37,7 @@
 #include <utility>
 #include <vector>
 
+#include <frictionid/model/ellipse_nearest_point.hpp>
 #include <frictionid/model/gauss_legendre_rule.hpp>
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/model/spot_integrals.hpp>
@@ -135,45 +136,8 @@ class EllipseLawIntegrator {
     return fractional_ ? std::min(1.0 + s, ends_at_rim ? HUGE_VAL : 1.0 - s) : HUGE_VAL;
   }
 
-  // The distance from (x, y) to the rim x^2 + (y/q)^2 = 1, from inside or outside: the nearest
-  // rim point (e0^2 x/(t + e0^2), e1^2 y/(t + e1^2)) for the root t of the usual secular
-  // equation, found by bisection (after D. Eberly, "Distance from a point to an ellipse").
-  double rim_distance(double x, double y) const {
-    double e0 = 1.0, e1 = q_, y0 = std::fabs(x), y1 = std::fabs(y);
-    if (e1 > e0) {
-      std::swap(e0, e1);
-      std::swap(y0, y1);
-    }
-    if (!(std::isfinite(y0) && std::isfinite(y1))) return HUGE_VAL;
-    if (y1 > 0.0) {
-      if (y0 > 0.0) {
-        const double z0 = y0 / e0, z1 = y1 / e1, g = z0 * z0 + z1 * z1 - 1.0;
-        if (g == 0.0) return 0.0;
-        const double r0 = (e0 / e1) * (e0 / e1), n0 = r0 * z0;
-        double lo = z1 - 1.0, hi = g < 0.0 ? 0.0 : std::hypot(n0, z1) - 1.0, t = 0.0;
-        for (int i = 0; i < 200; ++i) {
-          t = 0.5 * (lo + hi);
-          if (t == lo || t == hi) break;
-          const double a = n0 / (t + r0), b = z1 / (t + 1.0), f = a * a + b * b - 1.0;
-          if (f > 0.0)
-            lo = t;
-          else if (f < 0.0)
-            hi = t;
-          else
-            break;
-        }
-        const double x0 = r0 * y0 / (t + r0), x1 = y1 / (t + 1.0);
-        return std::hypot(x0 - y0, x1 - y1);
-      }
-      return std::fabs(y1 - e1);
-    }
-    const double num = e0 * y0, den = e0 * e0 - e1 * e1;
-    if (num < den) {
-      const double u = num / den, x0 = e0 * u, x1 = e1 * std::sqrt(1.0 - u * u);
-      return std::min(std::hypot(x0 - y0, x1), std::fabs(y0 - e0));
-    }
-    return std::fabs(y0 - e0);
-  }
+  // The distance from (x, y) to the rim x^2 + (y/q)^2 = 1, from inside or outside.
+  double rim_distance(double x, double y) const { return nearest_rim_point(q_, x, y).distance; }
 
   void slopes(double cx, double cy, double* acc) const {
     const Centre c{cx, cy, std::hypot(cx, cy), std::hypot(cx, cy / q_)};

@@ -324,7 +324,11 @@ class SpotIntegralTable {
     Axx_ = m.Axx;
     Axy_ = m.Axy;
     Ayy_ = m.Ayy;
-    const SpotIntegrator integrate(spot, law, q_, node_rules(kind_, law));
+    // The laws that reach the rays here: on an ellipse the power laws (uniform, Hertz,
+    // parabolic, power:n), whose rays are closed forms, and the ring, integrated along the rim;
+    // on a rectangle only the ring (the others by strips). An annulus on an ellipse comes from
+    // the uniform ellipse's table and a table law from layers of it (below).
+    const SpotIntegrator integrate(spot, law, q_);
     const RectStripIntegrator strips(law, q_);
     const PressureMap none;
     const MapStripIntegrator map_strips(map_ ? *map_ : none);
@@ -442,23 +446,6 @@ class SpotIntegralTable {
                                             false, false, true,  false, false, true};
 
   // --- The points' rules ------------------------------------------------------------------------
-
-  // Which laws reach SpotIntegrator here: on an ellipse the power laws (uniform, Hertz,
-  // parabolic, power:n), whose rays are closed forms (SpotIntegrator::power_ray), and the ring;
-  // on a rectangle only the ring (the others by strips). An annulus comes from the uniform
-  // ellipse's table and a table law from layers of it. The ring law's integral runs over the
-  // rim's reference angle, whose integrand turns on the scale of the aspect near the long axis:
-  // the default rule errs by 1e-8 A0 at q = 0.7 and the fine one by 3e-7 at q = 0.3; step 1/64
-  // stays below 1e-13 for 0.3 <= q <= 4.
-  static SpotRules node_rules(SpotKind kind, const PressureLaw<double>& law) {
-    SpotRules r;
-    if (kind == SpotKind::Rect) r.angular = &fine_rule();
-    if (law.kind == PressureKind::Ring) {
-      static const std::vector<QuadratureNode> rim = make_tanh_sinh_rule(1.0 / 64.0, 1e-30);
-      r.angular = &rim;
-    }
-    return r;
-  }
 
   // --- The table --------------------------------------------------------------------------------
 

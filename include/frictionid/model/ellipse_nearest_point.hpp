@@ -1,0 +1,83 @@
+// The point of the ellipse x^2 + (y/q)^2 = 1 nearest a given point, from inside or outside
+// (after D. Eberly, "Distance from a point to an ellipse, an ellipsoid, or a hyperellipsoid").
+// In the frame where the semi-axes are e0 >= e1 and the point (y0, y1) lies in the first
+// quadrant, the nearest point is (e0^2 y0/(t + e0^2), e1^2 y1/(t + e1^2)) for the root t of
+// (e0 y0/(t + e0^2))^2 + (e1 y1/(t + e1^2))^2 = 1, which is monotone in t on the bracket used
+// here, so bisection finds it to the last bit. Plain double: the integrators use it to place
+// their cuts, not inside any derivative.
+#pragma once
+
+#include <cmath>
+#include <utility>
+
+namespace frictionid::model {
+
+struct RimPoint {
+  double x = 0.0, y = 0.0;  // the nearest point of the rim
+  double distance = 0.0;    // from the given point to it
+};
+
+inline RimPoint nearest_rim_point(double q, double x, double y) {
+  double e0 = 1.0, e1 = q, y0 = std::fabs(x), y1 = std::fabs(y);
+  const bool swapped = e1 > e0;
+  if (swapped) {
+    std::swap(e0, e1);
+    std::swap(y0, y1);
+  }
+  RimPoint p;
+  if (!(std::isfinite(y0) && std::isfinite(y1))) {
+    p.distance = HUGE_VAL;
+    return p;
+  }
+  double x0 = e0, x1 = 0.0;  // the nearest point in the first quadrant, e0 >= e1
+  if (y1 > 0.0) {
+    if (y0 > 0.0) {
+      const double z0 = y0 / e0, z1 = y1 / e1, g = z0 * z0 + z1 * z1 - 1.0;
+      if (g == 0.0) {
+        x0 = y0;
+        x1 = y1;
+        p.distance = 0.0;
+      } else {
+        const double r0 = (e0 / e1) * (e0 / e1), n0 = r0 * z0;
+        double lo = z1 - 1.0, hi = g < 0.0 ? 0.0 : std::hypot(n0, z1) - 1.0, t = 0.0;
+        for (int i = 0; i < 200; ++i) {
+          t = 0.5 * (lo + hi);
+          if (t == lo || t == hi) break;
+          const double a = n0 / (t + r0), b = z1 / (t + 1.0), f = a * a + b * b - 1.0;
+          if (f > 0.0)
+            lo = t;
+          else if (f < 0.0)
+            hi = t;
+          else
+            break;
+        }
+        x0 = r0 * y0 / (t + r0);
+        x1 = y1 / (t + 1.0);
+        p.distance = std::hypot(x0 - y0, x1 - y1);
+      }
+    } else {
+      x0 = 0.0;
+      x1 = e1;
+      p.distance = std::fabs(y1 - e1);
+    }
+  } else {
+    // On the long axis: the nearest point leaves it only from inside its evolute's span.
+    const double num = e0 * y0, den = e0 * e0 - e1 * e1;
+    p.distance = std::fabs(y0 - e0);
+    if (num < den) {
+      const double u = num / den, a = e0 * u, b = e1 * std::sqrt(1.0 - u * u);
+      const double d = std::hypot(a - y0, b);
+      if (d < p.distance) {
+        x0 = a;
+        x1 = b;
+        p.distance = d;
+      }
+    }
+  }
+  if (swapped) std::swap(x0, x1);
+  p.x = std::copysign(x0, x);
+  p.y = std::copysign(x1, y);
+  return p;
+}
+
+}  // namespace frictionid::model
