@@ -304,6 +304,31 @@ TEST(SpotIntegralTable, AnAnnulusFromTheUniformEllipseHoldsForAnyInnerRadiusAndA
   }
 }
 
+// A ray's readings (the layers' way of reading the uniform ellipse) are the table's own values
+// at c/s, from every quadrant, the centre, the polar patch and the far one, to rounding.
+TEST(SpotIntegralTable, ItsRayReadsTheTableAtCOverS) {
+  for (double q : {0.4, 2.5}) {
+    const ContactSpot spot = ContactSpot::ellipse(q);
+    const NamedLaw law{"uniform", PressureLaw<double>::uniform()};
+    const SpotIntegralTable& table = table_for(spot, law);
+    const double A0 = area(spot, law.law, q);
+    Uniform u(41);
+    double worst = 0.0;
+    for (int i = 0; i < 40; ++i) {
+      const double cx = i == 0 ? 0.0 : u.in(-2.0, 2.0), cy = i == 0 ? 0.0 : q * u.in(-2.0, 2.0);
+      const SpotIntegralTable::Ray ray = table.ray(cx, cy);
+      for (int k = 0; k < 30; ++k) {
+        const double s = std::pow(10.0, u.in(-3.0, 0.3));
+        const auto got = ray(s);
+        const auto want = table.channels_at(cx / s, cy / s);
+        for (std::size_t j = 0; j < 12; ++j)
+          worst = std::max(worst, std::fabs(got[j] - want[j]) / A0);
+      }
+    }
+    EXPECT_LT(worst, 1e-14) << "q " << q;
+  }
+}
+
 TEST(SpotIntegralTable, EachIntegralIsEvenOrOddInEachCoordinateOfTheCentre) {
   // Reflecting x turns e_y and the weight x; reflecting y turns e_x and the weight y. Channels:
   // ex[0..2], ey[0..2], x_ey[0..2], y_ex[0..2].

@@ -7,7 +7,8 @@
 // does not change under that scaling, so an integral whose weight has degree d (1, x or y, times
 // x or y for the moments) is s^(2+d) U(c/s), U the unit uniform ellipse's integral, and
 //   I(c) = L(1) U(c) + sum_k J_k s_k^(2+d) U(c/s_k) + ∫_0^1 (-L'(s)) s^(2+d) U(c/s) ds.   (9.8)
-// U comes from its table (~0.4 us a point), so a point costs one 1-D integral in s instead of a
+// U comes from its table, read along the ray c/s (SpotIntegralTable::Ray: one series in the
+// radial coordinate a reading, ~0.2 us), so a point costs one 1-D integral in s instead of a
 // 2-D one: the rays of SpotIntegrator cut every ray and the angular range at each of a table
 // law's samples (39 ms a point for 41 samples), and left a law of more than 64 samples to their
 // rules across its kinks (6e-6 of f N for 100 samples). Here the samples cut only the s-range.
@@ -25,7 +26,7 @@
 // lower bound on their distance (U is analytic within the distance from c/s to the rim, found
 // by bisection), and then takes Gauss–Legendre with as many points as that distance asks for
 // 1e-12; parts next to rho_e stop at 1% of it and take tanh-sinh, as does a rim end that keeps
-// a fractional power. 250-650 points of U's table a point (0.1-0.3 ms) for ellipses of aspect
+// a fractional power. 250-650 readings of U's table a point (0.05-0.3 ms) for ellipses of aspect
 // 0.1-3, about 4 more per sample of a table; within 1e-12 A0 of the rays at their fine rules.
 #pragma once
 
@@ -45,8 +46,8 @@
 
 namespace frictionid::model {
 
-// Uniform: the unit uniform ellipse of aspect q, anything with
-// std::array<double, 12> channels_at(double cx, double cy) (a SpotIntegralTable).
+// Uniform: the unit uniform ellipse of aspect q, anything whose ray(cx, cy) reads its twelve
+// channels at c/s as ray(s) (a SpotIntegralTable).
 template <typename Uniform>
 class EllipseLawIntegrator {
  public:
@@ -76,9 +77,10 @@ class EllipseLawIntegrator {
 
   SpotIntegrals operator()(double cx, double cy) const {
     double acc[12] = {};
-    if (rim_value_ != 0.0) layer(cx, cy, 1.0, rim_value_, acc);
-    for (const PressureTable::Jump& j : jumps_) layer(cx, cy, j.rho, j.drop, acc);
-    if (density_) slopes(cx, cy, acc);
+    const Ray ray = uniform_->ray(cx, cy);  // every reading is U(c/s)
+    if (rim_value_ != 0.0) layer(ray, 1.0, rim_value_, acc);
+    for (const PressureTable::Jump& j : jumps_) layer(ray, j.rho, j.drop, acc);
+    if (density_) slopes(cx, cy, ray, acc);
     return SpotIntegrals::from_channels(acc);
   }
 
@@ -93,10 +95,13 @@ class EllipseLawIntegrator {
   static constexpr int kMaxDepth = 60;
   static constexpr double kNearRim = 0.9;  // rho_e this far across the rim piece: cut in w
 
+  // U's readings along the ray c/s from one centre (SpotIntegralTable::Ray).
+  using Ray = decltype(std::declval<const Uniform&>().ray(0.0, 0.0));
+
   // w times the uniform ellipse of elliptic radius s: w s^(2+d) U(c/s).
-  void layer(double cx, double cy, double s, double w, double* acc) const {
+  void layer(const Ray& ray, double s, double w, double* acc) const {
     if (w == 0.0 || !(s > 1e-100)) return;  // below that its share underflows
-    const std::array<double, 12> u = uniform_->channels_at(cx / s, cy / s);
+    const std::array<double, 12> u = ray(s);
     const double w2 = w * s * s, w3 = w2 * s, w4 = w3 * s;
     for (std::size_t j = 0; j < 12; ++j)
       acc[j] += (kDegree[j] == 0 ? w2 : kDegree[j] == 1 ? w3 : w4) * u[j];
@@ -120,6 +125,7 @@ class EllipseLawIntegrator {
 
   struct Centre {
     double cx, cy, norm, re;  // c, |c| and rho_e(c)
+    const Ray* ray;
   };
 
   // Lower bounds on the distance from s to the nearest complex singularity of the integrand
@@ -139,8 +145,8 @@ class EllipseLawIntegrator {
   // The distance from (x, y) to the rim x^2 + (y/q)^2 = 1, from inside or outside.
   double rim_distance(double x, double y) const { return nearest_rim_point(q_, x, y).distance; }
 
-  void slopes(double cx, double cy, double* acc) const {
-    const Centre c{cx, cy, std::hypot(cx, cy), std::hypot(cx, cy / q_)};
+  void slopes(double cx, double cy, const Ray& ray, double* acc) const {
+    const Centre c{cx, cy, std::hypot(cx, cy), std::hypot(cx, cy / q_), &ray};
     for (std::size_t k = 0; k + 1 < cuts_.size(); ++k) {
       const double a = cuts_[k], b = cuts_[k + 1];
       const bool inside = c.re > a && c.re < b;  // rho_e cuts this piece
@@ -200,7 +206,7 @@ class EllipseLawIntegrator {
         const double omr =
             p.m == 1 && end1 == End::Rim ? 2.0 * h * p.len * g.from_right : p.one_minus_s(w);
         const double s = p.m == 1 ? p.s(w) : 1.0 - omr;
-        layer(c.cx, c.cy, s, -g.weight * 2.0 * h * p.ds_dw(w) * law_slope(law_, s, omr), acc);
+        layer(*c.ray, s, -g.weight * 2.0 * h * p.ds_dw(w) * law_slope(law_, s, omr), acc);
       }
       return;
     }

@@ -60,7 +60,7 @@
 // The points. Ellipse: SpotIntegrator, whose rays are closed forms under the power laws
 // (uniform, Hertz, parabolic, power:n: 15-40 us a point); under a table law, layers of the
 // uniform ellipse (ellipse_law_integrator.hpp) from that ellipse's own table, built first
-// (0.2-0.6 ms a point, any number of samples; the table then takes 9,000-30,000 points, every
+// (0.1-0.3 ms a point, any number of samples; the table then takes 9,000-30,000 points, every
 // sample a line its cells resolve). An annulus has no points of its own: it is the uniform
 // ellipse less the one scaled by its inner radius, two readings of the uniform table (built to
 // a tolerance tightened by (1 - B^2)/(1 + B^2), the annulus' load over what the two carry).
@@ -386,6 +386,100 @@ class SpotIntegralTable {
     return v;
   }
 
+  // Readings along the ray c/s, s > 0, from one centre c: a table law's layers read the uniform
+  // ellipse at c/s for 250-650 values of s (ellipse_law_integrator.hpp). On an ellipse's table
+  // the angular coordinate of both patches (the reference angle of the polar patch, the
+  // physical angle of the far one) is the same for every s, so each piece's rows are summed with
+  // their angular Chebyshev weights once per ray and a reading costs one series in the radial
+  // coordinate: (n0 + 1) x 12 products where channels_at takes (n0 + 1)(n1 + 1) x 12. The same
+  // values as channels_at(c_x/s, c_y/s) but for rounding. Other tables read channels_at.
+  class Ray {
+   public:
+    std::array<double, kChannels> operator()(double s) const {
+      if (!t_->ray_by_slices() || centre_) return t_->channels_at(cx_ / s, cy_ / s);
+      const double P = P_ / s;
+      const std::size_t patch = P <= t_->near_ ? 0 : 1;
+      const double u0 = patch == 0 ? P : (r_ < HUGE_VAL ? s / r_ : 0.0), u1 = u1_[patch];
+      const Patch& g = t_->patches_[patch];
+      const std::size_t i0 = locate(g.breaks0, u0), i1 = locate(g.breaks1, u1);
+      const int r = g.roots[i0 * (g.breaks1.size() - 1) + i1];
+      std::array<double, kChannels> v{};
+      if (r < 0) return v;  // not on an ellipse's patches
+      const Root& root = t_->roots_[static_cast<std::size_t>(r)];
+      const double s0 = root.a0.s_of(u0), s1 = root.a1.s_of(u1);
+      const TreeNode* node = &t_->tree_[static_cast<std::size_t>(root.tree)];
+      while (node->dir >= 0)
+        node = &t_->tree_[static_cast<std::size_t>(
+            node->child[(node->dir == 0 ? s0 : s1) >= node->mid])];
+      const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(node->leaf)];
+      const double* g_row = slice(node->leaf, s1);
+      const double x = std::clamp((2.0 * s0 - leaf.a0 - leaf.b0) / (leaf.b0 - leaf.a0), -1.0, 1.0);
+      double tx[kStoreDegree + 1];
+      chebyshev(x, leaf.n0, tx);
+      for (int k = 0; k <= leaf.n0; ++k, g_row += kChannels)
+        for (int j = 0; j < kChannels; ++j) v[j] += tx[k] * g_row[j];
+      return v;
+    }
+
+   private:
+    friend class SpotIntegralTable;
+    Ray(const SpotIntegralTable& t, double cx, double cy) : t_(&t), cx_(cx), cy_(cy) {
+      const double ax = std::fabs(cx), ay = std::fabs(cy);
+      fx_ = std::signbit(cx);
+      fy_ = std::signbit(cy);
+      P_ = std::hypot(ax, ay / t.q_);
+      r_ = std::hypot(ax, ay);
+      centre_ = !(P_ > 0.0);
+      u1_[0] = std::atan2(ay / t.q_, ax);
+      u1_[1] = std::atan2(ay, ax);
+    }
+
+    // Piece `index`'s coefficients summed over its rows with the weights T_l(y) of this ray's
+    // angle, and the signs of its quadrant: (n0 + 1) x 12 values, computed at the first reading
+    // in that piece.
+    const double* slice(int index, double s1) const {
+      const auto& leaf = t_->leaves_[static_cast<std::size_t>(index)];
+      for (std::size_t i = 0; i < slices_.size(); ++i) {
+        const std::size_t k = (last_ + i) % slices_.size();
+        if (slices_[k].first == index) {
+          last_ = k;
+          return sums_.data() + slices_[k].second;
+        }
+      }
+      const double y = std::clamp((2.0 * s1 - leaf.a1 - leaf.b1) / (leaf.b1 - leaf.a1), -1.0, 1.0);
+      double ty[kStoreDegree + 1];
+      chebyshev(y, leaf.n1, ty);
+      double sign[kChannels];
+      for (int j = 0; j < kChannels; ++j)
+        sign[j] = (fx_ && kOddX[j]) != (fy_ && kOddY[j]) ? -1.0 : 1.0;
+      const std::size_t at = sums_.size();
+      sums_.resize(at + static_cast<std::size_t>(leaf.n0 + 1) * kChannels, 0.0);
+      double* g = sums_.data() + at;
+      const double* c = t_->coeff_.data() + leaf.offset;
+      for (int l = 0; l <= leaf.n1; ++l) {
+        const int len = leaf.row_len[static_cast<std::size_t>(l)];
+        for (int k = 0; k < len; ++k, c += kChannels)
+          for (int j = 0; j < kChannels; ++j) g[k * kChannels + j] += ty[l] * c[j];
+      }
+      for (int k = 0; k <= leaf.n0; ++k)
+        for (int j = 0; j < kChannels; ++j) g[k * kChannels + j] *= sign[j];
+      last_ = slices_.size();
+      slices_.push_back({index, at});
+      return g;
+    }
+
+    const SpotIntegralTable* t_;
+    double cx_, cy_;
+    bool fx_ = false, fy_ = false, centre_ = false;
+    double P_ = 0.0, r_ = 0.0;  // the reference radius and |c| at s = 1
+    double u1_[2] = {};         // the angular coordinate in the polar and the far patch
+    mutable std::vector<std::pair<int, std::size_t>> slices_;  // piece, offset into sums_
+    mutable std::vector<double> sums_;
+    mutable std::size_t last_ = 0;
+  };
+
+  Ray ray(double cx, double cy) const { return Ray(*this, cx, cy); }
+
   // Whether this table holds the integrals a model of this spot, aspect and law needs (the same
   // kind, the same q bit for bit, the same law and shape parameter; for a map the same map
   // object, whatever the law and q).
@@ -598,6 +692,9 @@ class SpotIntegralTable {
     u1 = atan2(ay, ax);
     return 1;
   }
+
+  // Whether Ray may read pieces by slices: an ellipse's own table (not an annulus' pair).
+  bool ray_by_slices() const { return kind_ == SpotKind::Ellipse && !uniform_; }
 
   // The limit |c| -> inf in direction gamma (sliding_limit_integrals), as channels.
   std::array<double, kChannels> far_limit(double gamma) const {

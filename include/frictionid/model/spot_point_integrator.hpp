@@ -5,7 +5,7 @@
 // integrate across; a pressure map cell by cell with the y-integral in closed form
 // (MapStripIntegrator: 35-65 times faster than rays); an ellipse under a table law by layers
 // of the uniform ellipse (EllipseLawIntegrator on that ellipse's table, built once per aspect:
-// exact for any number of samples, 0.1-0.6 ms a point where rays cut at every sample took 39
+// exact for any number of samples, 0.05-0.3 ms a point where rays cut at every sample took 39
 // ms for 41); any other ellipse by rays about the centre (SpotIntegrator). Rays from a far centre
 // lose digits in proportion to its distance (1e-9 of the integrals at |c| ~ 1e7, all of them at
 // 1e15, where pure sliding meets a rounding-level spin): beyond kFar spot radii the integrals are
