@@ -23,9 +23,11 @@ namespace sc = frictionid::testing::spot_cases;
 namespace fm = frictionid::model;
 
 // Every law (1 - rho^2)^n takes its rays in closed form: 2n whole up to power:4 by the powers
-// of u, any other n by the incomplete beta function's series. Ellipses of aspect 0.1 to 4, the
-// centre of rotation anywhere (eps 0.05 to 6, pure spin and pure sliding) and within 1e-9 of
-// the rim on either side; the model integrates every row (no table).
+// of u, any other n by the incomplete beta function's series; from inside, the angular integral
+// by Gauss–Legendre sized by its singular directions. Ellipses of aspect 0.1 to 4, the centre
+// of rotation anywhere (eps 0.05 to 6, pure spin and pure sliding), within 1e-9 of the rim on
+// either side and within 1e-6..1e-2 of the spot's centre; the model integrates every row (no
+// table).
 TEST(SpotIntegrator, ClosedFormRaysOfEveryPowerLawMatchTheOracle) {
   using L = fm::PressureLaw<double>;
   struct Law {
@@ -46,11 +48,13 @@ TEST(SpotIntegrator, ClosedFormRaysOfEveryPowerLawMatchTheOracle) {
   int i = 0;
   for (const Law& l : laws)
     for (double q : {0.1, 0.35, 1.0, 2.2, 4.0})
-      for (int j = 0; j < 3; ++j, ++i) {
+      for (int j = 0; j < 4; ++j, ++i) {
         const sr::Params p = sc::random_params(u, q);
         sr::Motion m = sc::random_motion(u, i, 5);
-        if (j == 2) {  // c = (-v_y, v_x)/(omega R) on the rim, 1e-9 inside or outside
-          const double t = u.in(-sc::kPi, sc::kPi), scale = 1.0 + u.sign() * 1e-9;
+        if (j >= 2) {  // c = (-v_y, v_x)/(omega R) on the rim, 1e-9 inside or outside, or
+                       // within 1e-6..1e-2 of the centre
+          const double t = u.in(-sc::kPi, sc::kPi);
+          const double scale = j == 2 ? 1.0 + u.sign() * 1e-9 : std::pow(10.0, u.in(-6.0, -2.0));
           const double w = (m.omega != 0.0 ? m.omega : 1.0) * m.R;
           m.omega = w / m.R;
           m.v_x = scale * q * std::sin(t) * w;
