@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <cstddef>
 #include <vector>
 
@@ -184,12 +185,17 @@ class SpotIntegrator {
     angular_pieces(CX, CY, cuts);
     SpotIntegrals out;
     Ray ray;
-    // From inside an ellipse under a power law the angular integrand's singularities are known
-    // (gauss_piece): Gauss–Legendre sized by their distance, with the default rules.
+    // On an ellipse under a power law the angular integrand's singularities are known: from
+    // inside (gauss_piece) and, for 2n whole, from outside (cone), Gauss–Legendre sized by
+    // their distance, with the default rules.
     const double P = std::hypot(CX, CY);
     const bool gauss =
         (twice_power_ >= 0 || any_power_) && P < 1.0 && rules_.angular == &radial_rule();
     const Singular singular = gauss ? singular_directions(P, std::atan2(CY, CX)) : Singular{};
+    if (twice_power_ >= 0 && P > 1.0 && rules_.angular == &radial_rule()) {
+      cone(CX, CY, P, std::atan2(CY, CX), out);
+      return out;
+    }
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       const double a = cuts[k], b = cuts[k + 1], len = b - a;
       if (!(len > 0.0)) continue;
@@ -320,6 +326,65 @@ class SpotIntegrator {
       accumulate(out, node.weight * len, c, s, ray_moments(CX, CY, c, s, ray));
     }
   }
+  // From outside the ellipse under (1 - rho^2)^n with 2n whole: the visible cone in the angle
+  // theta of d = sin(theta) (d the ray's distance from the centre), theta in [-pi/2, pi/2]:
+  // phi = beta + pi - asin(sin(theta)/P), h = cos(theta) and b = -sqrt(P^2 - sin^2 theta)
+  // exactly, dphi = -cos(theta) dtheta/sqrt(P^2 - sin^2 theta). The moments are h^(2n+1) times
+  // a polynomial in h^2 (the odd powers of t integrate to 0 over the whole chord), so the
+  // integrand is h^(2n+2)/sqrt(P^2 - sin^2 theta) times analytic: analytic at the tangent rays
+  // theta = +-pi/2, where in phi it had a branch point (phi - phi_t)^(n+1/2). Its singular
+  // directions: sqrt(P^2 - sin^2 theta) = 0 at +-pi/2 +- i acosh(P), and the squeezed axis's
+  // pair mapped by theta = asin(P sin(phi - beta)).
+  void cone(double CX, double CY, double P, double beta, SpotIntegrals& out) const {
+    std::vector<std::complex<double>> sing;
+    const double ac = std::acosh(P);
+    for (double re : {-1.5 * M_PI, -0.5 * M_PI, 0.5 * M_PI, 1.5 * M_PI}) sing.push_back({re, ac});
+    if (q_ != 1.0) {
+      const double axis = q_ < 1.0 ? 0.5 * M_PI : 0.0, tau = std::atanh(std::min(q_, 1.0 / q_));
+      const double k0 = std::round((beta + M_PI - axis) / M_PI);
+      for (double k = k0 - 1.0; k <= k0 + 1.0; k += 1.0) {
+        const std::complex<double> phi(axis + k * M_PI, tau);
+        const std::complex<double> th = std::asin(P * std::sin(phi - beta));
+        sing.push_back({th.real(), std::fabs(th.imag())});
+      }
+    }
+    cone_piece(CX, CY, P, beta, -0.5 * M_PI, 0.5 * M_PI, sing, out, 0);
+  }
+  // A piece [a, b] of the cone in theta, halved and integrated as in gauss_piece.
+  void cone_piece(double CX, double CY, double P, double beta, double a, double b,
+                  const std::vector<std::complex<double>>& sing, SpotIntegrals& out,
+                  int depth) const {
+    const double h = 0.5 * (b - a), mid = a + h;
+    const double above = kGrowthDistance / h;
+    double rho = bernstein_parameter(std::sqrt(1.0 + above * above));
+    for (const auto& z0 : sing) {
+      const double zr = (z0.real() - mid) / h, zi = z0.imag() / h;
+      const double z = 0.5 * (std::hypot(zr - 1.0, zi) + std::hypot(zr + 1.0, zi));
+      rho = std::min(rho, bernstein_parameter(z));
+    }
+    if (rho < kAngularRho && depth < kMaxAngularDepth) {
+      cone_piece(CX, CY, P, beta, a, mid, sing, out, depth + 1);
+      cone_piece(CX, CY, P, beta, mid, b, sing, out, depth + 1);
+      return;
+    }
+    const double n = std::ceil(gauss_legendre_points(rho, angular_log_, 0));
+    const int points = static_cast<int>(std::clamp(n, 3.0, 32.0));
+    const double len = b - a;
+    for (const auto& node : gauss_legendre_rule(points)) {
+      // cos(theta) to full precision next to either end.
+      const double theta = a + len * node.from_left;
+      const double ch = a == -0.5 * M_PI && node.from_left < 0.5   ? std::sin(len * node.from_left)
+                        : b == 0.5 * M_PI && node.from_right < 0.5 ? std::sin(len * node.from_right)
+                                                                   : std::cos(theta);
+      const double d = std::sin(theta), root = std::sqrt((P - d) * (P + d));
+      const double phi = beta + M_PI - std::asin(d / P);
+      const double c = std::cos(phi), s = std::sin(phi);
+      std::array<double, 6> m{};
+      power_ray(CX, CY, c, s, -root, d, ch, root - ch, m);
+      accumulate(out, node.weight * len * ch / root, c, s, m);
+    }
+  }
+
   static constexpr double kAngularLog = 32.0;  // -ln of a piece's relative error (n = 0)
   static constexpr double kAngularLogPerPower = 4.0;
   static constexpr double kAngularRho = 2.13;  // Bernstein parameter at 1.3 half-lengths
