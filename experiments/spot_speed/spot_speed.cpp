@@ -186,7 +186,11 @@ void run(const std::string& name, const ContactSpot& spot, const PressureLaw<dou
   // The check, relative to A0: the table against the rays at their fine angular rule, or for a
   // table law (whose rays keep at most 64 samples as cuts) against those points, exact for any
   // number of samples.
-  const SpotIntegrator fine(spot, law, q, SpotRules{&radial_rule(), &fine_rule(), false, false});
+  // (The ring's rim integral takes a tanh-sinh rule of step 1/128 along the rim.)
+  static const std::vector<QuadratureNode> rim = make_tanh_sinh_rule(1.0 / 128.0, 1e-30);
+  const bool ring = law.kind == PressureKind::Ring;
+  const SpotIntegrator fine(spot, law, q,
+                            SpotRules{&radial_rule(), ring ? &rim : &fine_rule(), false, false});
   const double A0 = spot_moments(spot, law_moments(law), q).A0;
   double worst = 0.0;
   for (const auto& c : centres()) {
@@ -226,6 +230,11 @@ int main(int argc, char** argv) {
   run("rect:0.7, parabolic", ContactSpot::rect(0.7), PressureLaw<double>::parabolic(), repeat);
   run("ellipse:0.1, hertz", ContactSpot::ellipse(0.1), PressureLaw<double>::hertz(), repeat);
   run("ellipse:4, hertz", ContactSpot::ellipse(4.0), PressureLaw<double>::hertz(), repeat);
+  run("ellipse:0.05, hertz", ContactSpot::ellipse(0.05), PressureLaw<double>::hertz(), repeat);
+  run("ellipse:0.1, power:1.7", ContactSpot::ellipse(0.1), PressureLaw<double>::power(1.7), repeat);
+  run("ellipse:0.1, annulus:0.5", ContactSpot::ellipse(0.1), PressureLaw<double>::annulus(0.5),
+      repeat);
+  run("ellipse:0.1, ring", ContactSpot::ellipse(0.1), PressureLaw<double>::ring(), repeat);
   run("ellipse:0.7, table of 41 samples", ContactSpot::ellipse(0.7), sampled_law(41), repeat);
   run("ellipse:0.7, table of 201 samples", ContactSpot::ellipse(0.7), sampled_law(201), repeat);
   run("rect:0.7, table of 201 samples", ContactSpot::rect(0.7), sampled_law(201), repeat);
