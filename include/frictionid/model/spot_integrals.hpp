@@ -609,18 +609,19 @@ class SpotIntegrator {
     }
   }
 
-  // The same under sigma0 = (1 - rho^2)^n, 2n whole (uniform, Hertz, parabolic, power:n), in
-  // closed form. With r = -b + h u (h = sqrt(1 - d^2), the chord's half-length),
+  // The same under sigma0 = (1 - rho^2)^n (uniform, Hertz, parabolic, power:n) in closed form
+  // (docs/physics.md (9.9)). With r = -b + h u (h = sqrt(1 - d^2), the chord's half-length),
   // 1 - rho^2 = h^2 (1 - u^2), and the point of the ray's line nearest the centre is d (s, -c),
-  // so X, Y and r are linear in u. With n = N or N + 1/2 every moment is
-  // h^(2n+1) ∫ (1 - u^2)^(n - N) P(u) du over [u0, 1], P a polynomial of degree <= 2N + 3:
-  // u0 = -1 from outside the spot, b/h from inside (the ray starts at r = 0). The integrals of
-  // the powers of u over [u0, 1] with w0 = sqrt(1 - u0^2):
+  // so X, Y and r are linear in u. Every moment is h^(2n+1) ∫ (1 - u^2)^(n - N) P(u) du over
+  // [u0, 1], P a polynomial of degree <= 2N + 3: u0 = -1 from outside the spot, b/h from inside
+  // (the ray starts at r = 0). N = n for whole n, n - 1/2 for n + 1/2 whole, else 0. The
+  // integrals of the powers of u over [u0, 1], with w0 = sqrt(1 - u0^2):
   //   whole n:  L_k = (1 - u0^(k+1))/(k+1), the difference summed as (1 - u0) sum u0^j;
   //   n + 1/2:  K_0 = (atan2(w0, u0) - u0 w0)/2,  K_1 = w0^3/3,
-  //             K_k = (u0^(k-1) w0^3 + (k-1) K_(k-2))/(k+2)
-  // (by parts, from d(1 - u^2)^(3/2) = -3u sqrt(1 - u^2) du). Exact, where the rules cost 1.2x
-  // (uniform) to 5x (Hertz: 28 sine-squared points; power:3: 6 points of exp and log) as much.
+  //             K_k = (u0^(k-1) w0^3 + (k-1) K_(k-2))/(k+2);
+  //   other n:  J_0 an incomplete beta function (incomplete_power), J_1 = W^(n+1)/(2(n+1)),
+  //             J_k = (u0^(k-1) W^(n+1) + (k-1) J_(k-2))/(2n+k+1), W = w0^2
+  // (by parts, from d(1 - u^2)^(n+1) = -2(n+1) u (1 - u^2)^n du).
   void power_ray(double CX, double CY, double c, double s, double b, double d, double h,
                  double r_back, std::array<double, 6>& m) const {
     constexpr int kMaxDegree = kMaxTwicePower + 3;
