@@ -68,6 +68,12 @@ inline double bernstein_parameter(double z) {
   return z + std::sqrt((z - 1.0) * (z + 1.0));
 }
 
+// The same through the point (x, y), in half-lengths from the interval's middle: z is the half
+// sum of its distances from the ends.
+inline double bernstein_parameter_through(double x, double y) {
+  return bernstein_parameter(0.5 * (std::hypot(x - 1.0, y) + std::hypot(x + 1.0, y)));
+}
+
 // The points n at which an integrand analytic inside the Bernstein ellipse of parameter rho,
 // times a polynomial of `degrees`, errs by ~rho^-(2n - degrees) < exp(-log_tolerance) (not
 // rounded to a whole number or clamped).

@@ -90,13 +90,9 @@ class MapStripIntegrator {
     return points_for_rho(bernstein_parameter(z), least);
   }
   // The same for a singularity at (re, im) from the start of a piece of that length.
-  // The ellipse with foci +-1 through z has parameter rho = a + sqrt(a^2 - 1), a the half sum of
-  // the distances from z to the foci.
   static int points_for(double re, double im, double length, int least) {
     const double zr = (2.0 * re - length) / length, zi = 2.0 * im / length;
-    const double a =
-        0.5 * (std::sqrt((zr - 1) * (zr - 1) + zi * zi) + std::sqrt((zr + 1) * (zr + 1) + zi * zi));
-    return points_for_rho(bernstein_parameter(a), least);
+    return points_for_rho(bernstein_parameter_through(zr, zi), least);
   }
   static int points_for_rho(double rho, int least) {
     // The error of n points is ~ rho^-(2n - 3): the cubic factor takes three of the degrees.

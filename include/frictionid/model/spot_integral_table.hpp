@@ -58,7 +58,7 @@
 // 16 s for a rough random 15 x 15 grid).
 //
 // The points. Ellipse: SpotIntegrator, whose rays are closed forms under the power laws
-// (uniform, Hertz, parabolic, power:n: 15-40 us a point); under a table law, layers of the
+// (uniform, Hertz, parabolic, power:n: 6-20 us a point); under a table law, layers of the
 // uniform ellipse (ellipse_law_integrator.hpp) from that ellipse's own table, built first
 // (0.1-0.3 ms a point, any number of samples; the table then takes 9,000-30,000 points, every
 // sample a line its cells resolve). An annulus has no points of its own: it is the uniform
@@ -498,8 +498,10 @@ class SpotIntegralTable {
   const PressureLaw<double>& law() const { return law_; }
 
   struct Stats {
-    std::size_t points = 0;        // integrals computed by the build (with the check points)
-    std::size_t layer_points = 0;  // those of the uniform ellipse's table a table law's came from
+    std::size_t points = 0;  // integrals computed by the build (with the check points)
+    // Those of the uniform ellipse's table that a table law's points came from; an annulus,
+    // which reads that table, reports its points and pieces in both.
+    std::size_t layer_points = 0;
     std::size_t pieces = 0;        // Chebyshev pieces stored
     std::size_t coefficients = 0;  // of each channel, summed over the pieces
     double estimate = 0.0;         // the build's own error estimate, worst cell, relative to A0
@@ -538,8 +540,6 @@ class SpotIntegralTable {
                                             false, true, false, false, true,  false};
   static constexpr bool kOddY[kChannels] = {true,  true,  false, false, false, true,
                                             false, false, true,  false, false, true};
-
-  // --- The points' rules ------------------------------------------------------------------------
 
   // --- The table --------------------------------------------------------------------------------
 

@@ -116,9 +116,10 @@ struct SpotRules {
   const std::vector<QuadratureNode>* radial = &radial_rule();
   const std::vector<QuadratureNode>* angular = &radial_rule();
   bool fine_maps = false;  // the angular rule on a map's narrow pieces too (a reference)
-  // An ellipse's rays under (1 - rho^2)^n, 2n whole and n <= 4 (uniform, Hertz, parabolic,
-  // power:n), in closed form (SpotIntegrator::power_ray) instead of the radial rule; false
-  // keeps the rule (a reference).
+  // An ellipse's rays under the power laws (1 - rho^2)^n (uniform, Hertz, parabolic, power:n)
+  // in closed form (SpotIntegrator::power_ray) instead of the radial rule, and with the default
+  // angular rule their directions by Gauss–Legendre sized by the integrand's singular
+  // directions; false keeps the rules (a reference).
   bool closed_rays = true;
 };
 
@@ -181,26 +182,33 @@ class SpotIntegrator {
   SpotIntegrals operator()(double cx, double cy) const {
     if (law_.kind == PressureKind::Ring && kind_ != SpotKind::Map) return rim_integrals(cx, cy);
     const double CX = cx, CY = cy / q_;  // reference coordinates of the centre
-    std::vector<double> cuts;
-    angular_pieces(CX, CY, cuts);
     SpotIntegrals out;
-    Ray ray;
     // On an ellipse under a power law the angular integrand's singularities are known: from
-    // inside (gauss_piece) and, for 2n whole, from outside (cone), Gauss–Legendre sized by
-    // their distance, with the default rules.
+    // outside (for 2n whole, cone) and from inside, Gauss–Legendre sized by their distance, with
+    // the default rules.
     const double P = std::hypot(CX, CY);
-    const bool gauss =
-        (twice_power_ >= 0 || any_power_) && P < 1.0 && rules_.angular == &radial_rule();
-    const Singular singular = gauss ? singular_directions(P, std::atan2(CY, CX)) : Singular{};
-    if (twice_power_ >= 0 && P > 1.0 && rules_.angular == &radial_rule()) {
+    const bool power_law = (twice_power_ >= 0 || any_power_) && rules_.angular == &radial_rule();
+    if (power_law && twice_power_ >= 0 && P > 1.0) {
       cone(CX, CY, P, std::atan2(CY, CX), out);
       return out;
     }
+    std::vector<double> cuts;
+    angular_pieces(CX, CY, cuts);
+    Ray ray;
+    const bool gauss = power_law && P < 1.0;
+    std::vector<std::complex<double>> singular;
+    if (gauss) singular = singular_directions(P, std::atan2(CY, CX), cuts.front());
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       const double a = cuts[k], b = cuts[k + 1], len = b - a;
       if (!(len > 0.0)) continue;
       if (gauss) {
-        gauss_piece(CX, CY, a, b, singular, ray, out, 0);
+        halve(a, b, singular, 0, [&](double from, double length, int points) {
+          for (const auto& node : gauss_legendre_rule(points)) {
+            const double phi = from + length * node.from_left;
+            const double c = std::cos(phi), s = std::sin(phi);
+            accumulate(out, node.weight * length, c, s, ray_moments(CX, CY, c, s, ray));
+          }
+        });
         continue;
       }
       if (kind_ == SpotKind::Map && len < kNarrowPiece && !rules_.fine_maps) {
@@ -269,63 +277,47 @@ class SpotIntegrator {
   }
 
   // The complex directions where the angular integrand of a centre inside the ellipse is
-  // singular, each repeating every half turn: the chord's half-length h = sqrt(1 - d^2)
-  // vanishes at beta + pi/2 +- i acosh(1/P) (d = P sin(phi - beta); the closed forms' other
-  // branch points, atan2(w0, u0) and the powers of 1 - u0^2, sit there too), and the
-  // physical direction's length sqrt(cos^2 + q^2 sin^2) at the squeezed axis +-
-  // i atanh(min(q, 1/q)).
-  struct Singular {
-    double re[2] = {0.0, 0.0}, im[2] = {HUGE_VAL, HUGE_VAL};
-  };
-  Singular singular_directions(double P, double beta) const {
-    Singular s;
-    if (P > 0.0) {
-      s.re[0] = beta + 0.5 * M_PI;
-      s.im[0] = std::acosh(1.0 / P);
-    }
-    if (q_ != 1.0) {
-      s.re[1] = q_ < 1.0 ? 0.5 * M_PI : 0.0;
-      s.im[1] = std::atanh(std::min(q_, 1.0 / q_));
-    }
-    return s;
+  // singular, each repeating every half turn, over the turn from `lo` and half a turn beyond
+  // either end: the chord's half-length h = sqrt(1 - d^2) vanishes at beta + pi/2 +-
+  // i acosh(1/P) (d = P sin(phi - beta); the closed forms' other branch points, atan2(w0, u0)
+  // and the powers of 1 - u0^2, sit there too), and the physical direction's length
+  // sqrt(cos^2 + q^2 sin^2) at the squeezed axis +- i atanh(min(q, 1/q)). (Imaginary parts as
+  // distances: the pairs are symmetric.)
+  std::vector<std::complex<double>> singular_directions(double P, double beta, double lo) const {
+    std::vector<std::complex<double>> out;
+    auto repeat = [&](double re, double im) {
+      const double k0 = std::floor((lo - re) / M_PI);
+      for (double k = k0 - 1.0; k <= k0 + 4.0; k += 1.0) out.push_back({re + k * M_PI, im});
+    };
+    if (P > 0.0) repeat(beta + 0.5 * M_PI, std::acosh(1.0 / P));
+    if (q_ != 1.0) repeat(q_ < 1.0 ? 0.5 * M_PI : 0.0, std::atanh(std::min(q_, 1.0 / q_)));
+    return out;
   }
 
-  // The angular piece [a, b] from inside the ellipse: halved until every singularity keeps kZ
-  // half-lengths from its middle (a centre next to the rim brings the chord's pair within
-  // acosh(1/P) ~ sqrt(2(1 - P)) of a cut, so the halving crowds there geometrically), then
-  // Gauss–Legendre with the points the nearest one's Bernstein ellipse asks for 1e-14 (more for
-  // a higher power n, whose (1 - rho^2)^n grows off the real axis): 85-230 directions a point
-  // for aspects 0.05-4, where tanh-sinh on every piece took 300-900.
-  void gauss_piece(double CX, double CY, double a, double b, const Singular& sing, Ray& ray,
-                   SpotIntegrals& out, int depth) const {
+  // [a, b] halved until every singular point keeps kZ half-lengths from its middle (a centre
+  // next to the rim brings the chord's pair within acosh(1/P) ~ sqrt(2(1 - P)) of a cut, so the
+  // halving crowds there geometrically), then rule(from, length, points) with the Gauss–Legendre
+  // points the nearest one's Bernstein ellipse asks for 1e-14 (more for a higher power n, whose
+  // (1 - rho^2)^n grows off the real axis): 85-230 directions a point for aspects 0.05-4, where
+  // tanh-sinh on every piece took 300-900. The weights and the direction are trigonometric
+  // polynomials of degree <= 4, which grow like exp(4 |Im phi|) off the real axis: as if
+  // singular kGrowthDistance above every point too.
+  template <typename Rule>
+  void halve(double a, double b, const std::vector<std::complex<double>>& singular, int depth,
+             const Rule& rule) const {
     const double h = 0.5 * (b - a), mid = a + h;
-    // The weights and the direction are trigonometric polynomials of degree <= 4, which grow
-    // like exp(4 |Im phi|) off the real axis: as if singular 1 above every point.
-    const double above = kGrowthDistance / h;
-    double rho = bernstein_parameter(std::sqrt(1.0 + above * above));
-    for (int j = 0; j < 2; ++j) {
-      if (!(sing.im[j] < HUGE_VAL)) continue;
-      const double k = std::round((mid - sing.re[j]) / M_PI);
-      for (double dk : {-1.0, 0.0, 1.0}) {
-        const double zr = (sing.re[j] + (k + dk) * M_PI - mid) / h, zi = sing.im[j] / h;
-        const double z = 0.5 * (std::hypot(zr - 1.0, zi) + std::hypot(zr + 1.0, zi));
-        rho = std::min(rho, bernstein_parameter(z));
-      }
-    }
+    double rho = bernstein_parameter_through(0.0, kGrowthDistance / h);
+    for (const std::complex<double>& z : singular)
+      rho = std::min(rho, bernstein_parameter_through((z.real() - mid) / h, z.imag() / h));
     if (rho < kAngularRho && depth < kMaxAngularDepth) {
-      gauss_piece(CX, CY, a, mid, sing, ray, out, depth + 1);
-      gauss_piece(CX, CY, mid, b, sing, ray, out, depth + 1);
+      halve(a, mid, singular, depth + 1, rule);
+      halve(mid, b, singular, depth + 1, rule);
       return;
     }
     const double n = std::ceil(gauss_legendre_points(rho, angular_log_, 0));
-    const int points = static_cast<int>(std::clamp(n, 3.0, 32.0));
-    const double len = b - a;
-    for (const auto& node : gauss_legendre_rule(points)) {
-      const double phi = a + len * node.from_left;
-      const double c = std::cos(phi), s = std::sin(phi);
-      accumulate(out, node.weight * len, c, s, ray_moments(CX, CY, c, s, ray));
-    }
+    rule(a, b - a, static_cast<int>(std::clamp(n, 3.0, 32.0)));
   }
+
   // From outside the ellipse under (1 - rho^2)^n with 2n whole: the visible cone in the angle
   // theta of d = sin(theta) (d the ray's distance from the centre), theta in [-pi/2, pi/2]:
   // phi = beta + pi - asin(sin(theta)/P), h = cos(theta) and b = -sqrt(P^2 - sin^2 theta)
@@ -334,7 +326,7 @@ class SpotIntegrator {
   // integrand is h^(2n+2)/sqrt(P^2 - sin^2 theta) times analytic: analytic at the tangent rays
   // theta = +-pi/2, where in phi it had a branch point (phi - phi_t)^(n+1/2). Its singular
   // directions: sqrt(P^2 - sin^2 theta) = 0 at +-pi/2 +- i acosh(P), and the squeezed axis's
-  // pair mapped by theta = asin(P sin(phi - beta)).
+  // pair mapped by theta = asin(P sin(phi - beta)). Halved and integrated as from inside.
   void cone(double CX, double CY, double P, double beta, SpotIntegrals& out) const {
     std::vector<std::complex<double>> sing;
     const double ac = std::acosh(P);
@@ -348,41 +340,23 @@ class SpotIntegrator {
         sing.push_back({th.real(), std::fabs(th.imag())});
       }
     }
-    cone_piece(CX, CY, P, beta, -0.5 * M_PI, 0.5 * M_PI, sing, out, 0);
-  }
-  // A piece [a, b] of the cone in theta, halved and integrated as in gauss_piece.
-  void cone_piece(double CX, double CY, double P, double beta, double a, double b,
-                  const std::vector<std::complex<double>>& sing, SpotIntegrals& out,
-                  int depth) const {
-    const double h = 0.5 * (b - a), mid = a + h;
-    const double above = kGrowthDistance / h;
-    double rho = bernstein_parameter(std::sqrt(1.0 + above * above));
-    for (const auto& z0 : sing) {
-      const double zr = (z0.real() - mid) / h, zi = z0.imag() / h;
-      const double z = 0.5 * (std::hypot(zr - 1.0, zi) + std::hypot(zr + 1.0, zi));
-      rho = std::min(rho, bernstein_parameter(z));
-    }
-    if (rho < kAngularRho && depth < kMaxAngularDepth) {
-      cone_piece(CX, CY, P, beta, a, mid, sing, out, depth + 1);
-      cone_piece(CX, CY, P, beta, mid, b, sing, out, depth + 1);
-      return;
-    }
-    const double n = std::ceil(gauss_legendre_points(rho, angular_log_, 0));
-    const int points = static_cast<int>(std::clamp(n, 3.0, 32.0));
-    const double len = b - a;
-    for (const auto& node : gauss_legendre_rule(points)) {
-      // cos(theta) to full precision next to either end.
-      const double theta = a + len * node.from_left;
-      const double ch = a == -0.5 * M_PI && node.from_left < 0.5   ? std::sin(len * node.from_left)
-                        : b == 0.5 * M_PI && node.from_right < 0.5 ? std::sin(len * node.from_right)
-                                                                   : std::cos(theta);
-      const double d = std::sin(theta), root = std::sqrt((P - d) * (P + d));
-      const double phi = beta + M_PI - std::asin(d / P);
-      const double c = std::cos(phi), s = std::sin(phi);
-      std::array<double, 6> m{};
-      power_ray(CX, CY, c, s, -root, d, ch, root - ch, m);
-      accumulate(out, node.weight * len * ch / root, c, s, m);
-    }
+    halve(-0.5 * M_PI, 0.5 * M_PI, sing, 0, [&](double a, double len, int points) {
+      const double b = a + len;
+      for (const auto& node : gauss_legendre_rule(points)) {
+        // cos(theta) to full precision next to either end.
+        const double theta = a + len * node.from_left;
+        const double ch = a == -0.5 * M_PI && node.from_left < 0.5 ? std::sin(len * node.from_left)
+                          : b == 0.5 * M_PI && node.from_right < 0.5
+                              ? std::sin(len * node.from_right)
+                              : std::cos(theta);
+        const double d = std::sin(theta), root = std::sqrt((P - d) * (P + d));
+        const double phi = beta + M_PI - std::asin(d / P);
+        const double c = std::cos(phi), s = std::sin(phi);
+        std::array<double, 6> m{};
+        power_ray(CX, CY, c, s, -root, d, ch, root - ch, m);
+        accumulate(out, node.weight * len * ch / root, c, s, m);
+      }
+    });
   }
 
   static constexpr double kAngularLog = 32.0;  // -ln of a piece's relative error (n = 0)
@@ -635,7 +609,7 @@ class SpotIntegrator {
     const int N = any_power_ ? 0 : twice_power_ / 2, top = 2 * N + 3;
     const bool half = twice_power_ % 2 == 1;
     double K[kMaxDegree + 1];
-    double scale;  // h^(2n+1)
+    double scale = 1.0;  // h^(2n+1)
     if (any_power_) {
       const double n = law_.n;
       scale = std::pow(h, 2.0 * n + 1.0);
