@@ -23,8 +23,9 @@ namespace sc = frictionid::testing::spot_cases;
 namespace fm = frictionid::model;
 
 // Every law (1 - rho^2)^n takes its rays in closed form: 2n whole up to power:4 by the powers
-// of u, any other n by the incomplete beta function's series; from inside, the angular integral
-// by Gauss–Legendre sized by its singular directions. Ellipses of aspect 0.1 to 4, the centre
+// of u, any other n by the incomplete beta function's series; from inside (and, for 2n whole,
+// from outside, in the angle of the ray's distance) the angular integral by Gauss–Legendre
+// sized by its singular directions. Ellipses of aspect 0.1 to 4, the centre
 // of rotation anywhere (eps 0.05 to 6, pure spin and pure sliding), within 1e-9 of the rim on
 // either side and within 1e-6..1e-2 of the spot's centre; the model integrates every row (no
 // table).
