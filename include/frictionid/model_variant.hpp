@@ -89,11 +89,13 @@ inline std::shared_ptr<const model::RingIntegralTable> ring_table_for_rows(
   return rows >= kRingTableMinRows ? ring_table_for(kind, law, n, n_slope, {}, spot) : nullptr;
 }
 
-// Rows from which a tabulated spot (spot_integral_table.hpp) beats integrating every row: an
-// ellipse's or a rectangle's build costs about as much as 1000 rows integrated (0.05-0.4 s of
-// CPU time); a map's as much as 100,000 (3 s for a 13 x 9 map, whose rows integrate in 35 us),
-// and so does a table law's (3.6-6 s for 41-201 samples: its every sample is a line the table's
-// cells resolve, where its rows integrate in 0.2-0.6 ms).
+// Rows from which a tabulated spot (spot_integral_table.hpp) is read instead of integrating
+// every row. 2000 was set when an ellipse's rows took 100-400 us; under the power laws they now
+// take 6-20 us (closed-form rays) and its build 0.03-0.8 s of CPU time, so up to 5,000-40,000
+// rows integrating would be as quick (a rectangle's: 11-30 us a row, 0.07-0.5 s). A map's build
+// costs as much as 100,000 rows (2.5 s for a 13 x 9 map, whose rows integrate in 28 us), and so
+// does a table law's (1.7-4.7 s for 41-201 samples: its every sample is a line the table's cells
+// resolve, where its rows integrate in 0.09-0.3 ms).
 inline constexpr std::size_t kSpotTableMinRows = 2000;
 inline constexpr std::size_t kMapTableMinRows = 100000;
 

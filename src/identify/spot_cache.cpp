@@ -25,8 +25,9 @@ std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(
   if (power) law.n = n;
   const std::size_t rows = data.rows();
   // Many rows: tabulate the plane of the centre of rotation once (an ellipse or a rectangle
-  // 0.05-0.4 s of CPU time, a map seconds) and read every row from it (~0.3-0.5 us) instead of
-  // integrating each (30-300 us). The table stays within 3e-11 of the load of the integrals.
+  // 0.03-0.8 s of CPU time, a map or a table law seconds) and read every row from it
+  // (~0.3-0.5 us) instead of integrating each (6-300 us). The table stays within 3e-11 of the
+  // load of the integrals.
   std::unique_ptr<const model::SpotIntegralTable> table;
   if (rows >= spot_table_min_rows(s.contact, law)) {
     try {
