@@ -53,9 +53,9 @@
 // exactly on halves until what a cut drops sums to < kStoreTolerance), and each piece keeps per
 // row only the coefficients that matter. The build is deterministic: the same bits on any number
 // of threads. 2,000-8,000 points for an ellipse, 8,000-23,000 for a rectangle at q = 0.4-2.5;
-// an ellipse of aspect 0.1 or 4 needs 10,000-30,000; a map ~450 per grid cell (degree 9, then
-// 18: 66,000 for the 13 x 9 footprint, 3.0-3.2 s of CPU time at ~45 us a point; 190,000 and
-// 16 s for a rough random 15 x 15 grid).
+// an ellipse of aspect 0.1 or 4 needs 10,000-30,000 (0.05: 49,000); a map ~450 per grid cell
+// (degree 9, then 18: 66,000 for the 13 x 9 footprint, 2.5 s of CPU time at ~28 us a point;
+// 190,000 and 13 s for a rough random 15 x 15 grid).
 //
 // The points. Ellipse: SpotIntegrator, whose rays are closed forms under the power laws
 // (uniform, Hertz, parabolic, power:n: 6-20 us a point); under a table law, layers of the
@@ -324,14 +324,6 @@ class SpotIntegralTable {
     Axx_ = m.Axx;
     Axy_ = m.Axy;
     Ayy_ = m.Ayy;
-    // The laws that reach the rays here: on an ellipse the power laws (uniform, Hertz,
-    // parabolic, power:n), whose rays are closed forms, and the ring, integrated along the rim;
-    // on a rectangle only the ring (the others by strips). An annulus on an ellipse comes from
-    // the uniform ellipse's table and a table law from layers of it (below).
-    const SpotIntegrator integrate(spot, law, q_);
-    const RectStripIntegrator strips(law, q_);
-    const PressureMap none;
-    const MapStripIntegrator map_strips(map_ ? *map_ : none);
     // An annulus on an ellipse is the uniform ellipse less the one scaled by B (physics.md
     // (9.8)): U(c) - B^(2+d) U(c/B), two readings of the uniform ellipse's table, where a table
     // of its own resolves the step's ellipse (4x the points at q = 0.1).
@@ -346,6 +338,14 @@ class SpotIntegralTable {
       stats_.layer_points = stats_.points;
       return;
     }
+    // The laws that reach the rays here: on an ellipse the power laws (uniform, Hertz,
+    // parabolic, power:n), whose rays are closed forms, and the ring, integrated along the rim;
+    // on a rectangle only the ring (the others by strips). An annulus on an ellipse comes from
+    // the uniform ellipse's table and a table law from layers of it (below).
+    const SpotIntegrator integrate(spot, law, q_);
+    const RectStripIntegrator strips(law, q_);
+    const PressureMap none;
+    const MapStripIntegrator map_strips(map_ ? *map_ : none);
     // A table law on an ellipse: its points from the uniform ellipse's table, layer by layer.
     std::optional<EllipseLawIntegrator<SpotIntegralTable>> layers;
     if (kind_ == SpotKind::Ellipse && law.kind == PressureKind::Table) {

@@ -609,10 +609,11 @@ class SpotIntegrator {
     const int N = any_power_ ? 0 : twice_power_ / 2, top = 2 * N + 3;
     const bool half = twice_power_ % 2 == 1;
     double K[kMaxDegree + 1];
-    double scale = 1.0;  // h^(2n+1)
+    // h^(2n+1) (N = 0 for any other n)
+    double scale = any_power_ ? std::pow(h, 2.0 * law_.n + 1.0) : half ? h * h : h;
+    for (int i = 0; i < N; ++i) scale *= h * h;
     if (any_power_) {
       const double n = law_.n;
-      scale = std::pow(h, 2.0 * n + 1.0);
       if (r_back >= 0.0) {
         for (int k = 0; k <= top; ++k) K[k] = full_[k];
       } else {
@@ -652,10 +653,6 @@ class SpotIntegrator {
       deg += 2;
     }
     const double X0 = s * d, X1 = h * c, Y0 = -q_ * c * d, Y1 = q_ * h * s;
-    if (!any_power_) {
-      scale = half ? h * h : h;
-      for (int i = 0; i < N; ++i) scale *= h * h;
-    }
     // sum_k (P (A0 + A1 u)(B0 + B1 u))_k K_k.
     auto moment = [&](double A0, double A1, double B0, double B1) {
       double sum = 0.0;
