@@ -85,8 +85,6 @@ class EllipseLawIntegrator {
   }
 
  private:
-  // The degree of each channel's weight (ex[w], ey[w]: 1, x, y; x_ey[w], y_ex[w] one more).
-  static constexpr int kDegree[12] = {0, 1, 1, 0, 1, 1, 1, 2, 2, 1, 2, 2};
   static constexpr double kLog = 28.0;    // -ln of a Gauss–Legendre part's relative error
   static constexpr int kLeast = 4;        // a quadratic L' times s^4: degree 6
   static constexpr int kMost = 32;        // points of a part at z = kZ: 28
@@ -104,7 +102,10 @@ class EllipseLawIntegrator {
     const std::array<double, 12> u = ray(s);
     const double w2 = w * s * s, w3 = w2 * s, w4 = w3 * s;
     for (std::size_t j = 0; j < 12; ++j)
-      acc[j] += (kDegree[j] == 0 ? w2 : kDegree[j] == 1 ? w3 : w4) * u[j];
+      acc[j] += (SpotIntegrals::kChannelDegree[j] == 0   ? w2
+                 : SpotIntegrals::kChannelDegree[j] == 1 ? w3
+                                                         : w4) *
+                u[j];
   }
 
   // A piece of the s-range in the variable w in [0, 1]: s = a + len w, or at the rim, for

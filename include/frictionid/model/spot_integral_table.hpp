@@ -333,7 +333,8 @@ class SpotIntegralTable {
       uniform_.reset(new SpotIntegralTable(ContactSpot::ellipse(q_), PressureLaw<double>::uniform(),
                                            q_, stop, parallel, (1.0 - B * B) / (1.0 + B * B)));
       inner_ = B;
-      for (int j = 0; j < kChannels; ++j) inner_weight_[j] = std::pow(B, 2 + kDegree[j]);
+      for (int j = 0; j < kChannels; ++j)
+        inner_weight_[j] = std::pow(B, 2 + SpotIntegrals::kChannelDegree[j]);
       stats_ = uniform_->stats();
       stats_.layer_points = stats_.points;
       return;
@@ -531,9 +532,6 @@ class SpotIntegralTable {
   static constexpr double kCornerAngle = M_PI / 4;  // graded angle next to a line's direction
   static constexpr double kSqueeze = 0.3;  // grade the reference angle when atanh(q) is smaller
   static constexpr std::size_t kMaxGradedBreaks = 8;
-
-  // The degree of each channel's weight (ex[w], ey[w]: 1, x, y; x_ey[w], y_ex[w] one more).
-  static constexpr int kDegree[kChannels] = {0, 1, 1, 0, 1, 1, 1, 2, 2, 1, 2, 2};
 
   // Which channels change sign with c_x and with c_y.
   static constexpr bool kOddX[kChannels] = {false, true, false, true,  false, true,

@@ -52,6 +52,11 @@ Integrals integrals_from_channels(const V* v) {
 struct SpotIntegrals {
   std::array<double, 3> ex{}, ey{}, x_ey{}, y_ex{};
 
+  // The degree of each channel's weight in x and y (ex[w], ey[w]: 1, x, y; x_ey[w] and y_ex[w]
+  // one more): the uniform ellipse scaled by s carries s^(2 + degree) times the unit one's
+  // integrals at c/s (docs/physics.md (9.8)).
+  static constexpr int kChannelDegree[12] = {0, 1, 1, 0, 1, 1, 1, 2, 2, 1, 2, 2};
+
   // From twelve channels in the order of integrals_from_channels.
   static SpotIntegrals from_channels(const double* v) {
     return integrals_from_channels<SpotIntegrals>(v);
