@@ -16,7 +16,8 @@
 // largest difference over those centres from SpotIntegrator at its fine angular rule (for a
 // table law: from the model's points, layers or strips) is printed as a check.
 //
-//   spot_speed [--repeat N] [--root DIR]   # DIR: the repository, for data/footprint_map.csv
+//   spot_speed [--repeat N] [--root DIR] [--passes-only]
+//   # DIR: the repository, for data/footprint_map.csv; --passes-only: the one-pass table only
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -37,6 +38,7 @@
 #include <frictionid/model/pressure_table.hpp>
 #include <frictionid/model/spot_integral_table.hpp>
 #include <frictionid/model/spot_point_integrator.hpp>
+#include <frictionid/model_variant.hpp>
 
 using namespace frictionid::model;
 
@@ -205,43 +207,98 @@ void run(const std::string& name, const ContactSpot& spot, const PressureLaw<dou
               worst / A0);
 }
 
+// One pass over n rows (eval, generate, a fit's row cache), CPU time on one thread: integrating
+// every row (SpotPointIntegrator), always building the table and reading it, and the rule of
+// model_variant.hpp (spot_table_budget: a build with a budget of as many points as the rows cost,
+// abandoned before it would exceed it, and the rows then integrated). The rows are the
+// 256 centres of rotation above, whose cost per row is measured; the first two columns are that
+// cost times n, and the build's time plus n readings. The rule's column is its attempt, measured,
+// plus n readings or integrations at the measured rates.
+void pass(const std::string& name, const ContactSpot& spot, const PressureLaw<double>& law,
+          int repeat) {
+  const double q = spot.q;
+  const SpotPointIntegrator points(spot, law, q);
+  const double row = 1e-6 * per_call([&](double x, double y) { return points(x, y); }, repeat);
+  const double c0 = process_cpu();
+  const SpotIntegralTable table(spot, law, q, {}, 1);
+  const double build = process_cpu() - c0;
+  const double read = 1e-6 * per_call([&](double x, double y) { return table(x, y); }, repeat);
+  for (std::size_t n : {2000, 10000, 50000, 200000}) {
+    const double integrate = static_cast<double>(n) * row,
+                 tabulate = build + static_cast<double>(n) * read;
+    const std::size_t budget = frictionid::spot_table_budget(spot, law, n);
+    bool built = false;
+    const double a0 = process_cpu();
+    if (budget > 0) {
+      try {
+        const SpotIntegralTable attempt(spot, law, q, {}, 1, budget);
+        built = true;
+      } catch (const SpotTableOverBudget&) {
+      }
+    }
+    const double rule = process_cpu() - a0 + static_cast<double>(n) * (built ? read : row);
+    std::printf("| %s | %zu | %.2f s | %.2f s | %.2f s (%s) | %.2f |\n", name.c_str(), n, integrate,
+                tabulate, rule, built ? "table" : "integrated",
+                rule / std::min(integrate, tabulate));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int repeat = 5;
+  bool passes_only = false;
   std::string root = ".";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--repeat" && i + 1 < argc) {
       repeat = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "--passes-only") {
+      passes_only = true;
     } else if (a == "--root" && i + 1 < argc) {
       root = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: spot_speed [--repeat N] [--root DIR]\n");
+      std::fprintf(stderr, "usage: spot_speed [--repeat N] [--root DIR] [--passes-only]\n");
       return 2;
     }
   }
+  if (!passes_only) {
+    std::printf(
+        "| spot, law | build, 1 thread | build, 2 threads | points | pieces | size | table | "
+        "SpotIntegrator (rays) | the build's points (strips, layers) | table - reference (of A0) "
+        "|\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    run("ellipse:0.6, hertz", ContactSpot::ellipse(0.6), PressureLaw<double>::hertz(), repeat);
+    run("rect:0.7, parabolic", ContactSpot::rect(0.7), PressureLaw<double>::parabolic(), repeat);
+    run("ellipse:0.1, hertz", ContactSpot::ellipse(0.1), PressureLaw<double>::hertz(), repeat);
+    run("ellipse:4, hertz", ContactSpot::ellipse(4.0), PressureLaw<double>::hertz(), repeat);
+    run("ellipse:0.05, hertz", ContactSpot::ellipse(0.05), PressureLaw<double>::hertz(), repeat);
+    run("ellipse:0.1, power:1.7", ContactSpot::ellipse(0.1), PressureLaw<double>::power(1.7),
+        repeat);
+    run("ellipse:0.1, annulus:0.5", ContactSpot::ellipse(0.1), PressureLaw<double>::annulus(0.5),
+        repeat);
+    run("ellipse:0.1, ring", ContactSpot::ellipse(0.1), PressureLaw<double>::ring(), repeat);
+    run("ellipse:0.7, table of 41 samples", ContactSpot::ellipse(0.7), sampled_law(41), repeat);
+    run("ellipse:0.7, table of 201 samples", ContactSpot::ellipse(0.7), sampled_law(201), repeat);
+    run("rect:0.7, table of 201 samples", ContactSpot::rect(0.7), sampled_law(201), repeat);
+    run("map, footprint 13 x 9",
+        ContactSpot::pressure_map(read_map(root + "/data/footprint_map.csv")),
+        PressureLaw<double>::uniform(), repeat);
+    run("map, random 15 x 15", ContactSpot::pressure_map(random_map()),
+        PressureLaw<double>::uniform(), repeat);
+  }
   std::printf(
-      "| spot, law | build, 1 thread | build, 2 threads | points | pieces | size | table | "
-      "SpotIntegrator (rays) | the build's points (strips, layers) | table - reference (of A0) "
-      "|\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-  run("ellipse:0.6, hertz", ContactSpot::ellipse(0.6), PressureLaw<double>::hertz(), repeat);
-  run("rect:0.7, parabolic", ContactSpot::rect(0.7), PressureLaw<double>::parabolic(), repeat);
-  run("ellipse:0.1, hertz", ContactSpot::ellipse(0.1), PressureLaw<double>::hertz(), repeat);
-  run("ellipse:4, hertz", ContactSpot::ellipse(4.0), PressureLaw<double>::hertz(), repeat);
-  run("ellipse:0.05, hertz", ContactSpot::ellipse(0.05), PressureLaw<double>::hertz(), repeat);
-  run("ellipse:0.1, power:1.7", ContactSpot::ellipse(0.1), PressureLaw<double>::power(1.7), repeat);
-  run("ellipse:0.1, annulus:0.5", ContactSpot::ellipse(0.1), PressureLaw<double>::annulus(0.5),
-      repeat);
-  run("ellipse:0.1, ring", ContactSpot::ellipse(0.1), PressureLaw<double>::ring(), repeat);
-  run("ellipse:0.7, table of 41 samples", ContactSpot::ellipse(0.7), sampled_law(41), repeat);
-  run("ellipse:0.7, table of 201 samples", ContactSpot::ellipse(0.7), sampled_law(201), repeat);
-  run("rect:0.7, table of 201 samples", ContactSpot::rect(0.7), sampled_law(201), repeat);
-  run("map, footprint 13 x 9",
-      ContactSpot::pressure_map(read_map(root + "/data/footprint_map.csv")),
-      PressureLaw<double>::uniform(), repeat);
-  run("map, random 15 x 15", ContactSpot::pressure_map(random_map()),
-      PressureLaw<double>::uniform(), repeat);
+      "\n| one pass over n rows | n | integrate every row | always tabulate | the rule | the rule "
+      "/ the better |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|\n");
+  pass("ellipse:0.6, hertz", ContactSpot::ellipse(0.6), PressureLaw<double>::hertz(), repeat);
+  pass("ellipse:0.05, hertz", ContactSpot::ellipse(0.05), PressureLaw<double>::hertz(), repeat);
+  pass("ellipse:0.1, annulus:0.5", ContactSpot::ellipse(0.1), PressureLaw<double>::annulus(0.5),
+       repeat);
+  pass("ellipse:0.7, table of 201 samples", ContactSpot::ellipse(0.7), sampled_law(201), repeat);
+  pass("rect:0.7, table of 201 samples", ContactSpot::rect(0.7), sampled_law(201), repeat);
+  pass("map, footprint 13 x 9",
+       ContactSpot::pressure_map(read_map(root + "/data/footprint_map.csv")),
+       PressureLaw<double>::uniform(), repeat);
   return 0;
 }

@@ -89,44 +89,59 @@ inline std::shared_ptr<const model::RingIntegralTable> ring_table_for_rows(
   return rows >= kRingTableMinRows ? ring_table_for(kind, law, n, n_slope, {}, spot) : nullptr;
 }
 
-// Rows from which a tabulated spot (spot_integral_table.hpp) is read instead of integrating
-// every row. 2000 was set when an ellipse's rows took 100-400 us; under the power laws they now
-// take 6-20 us (closed-form rays) and its build 0.03-0.8 s of CPU time, so up to 5,000-40,000
-// rows integrating would be as quick (a rectangle's: 11-30 us a row, 0.07-0.5 s). A map's build
-// costs as much as 100,000 rows (2.5 s for a 13 x 9 map, whose rows integrate in 28 us), and so
-// does a table law's (1.7-4.7 s for 41-201 samples: its every sample is a line the table's cells
-// resolve, where its rows integrate in 0.09-0.3 ms).
+// A tabulated spot (spot_integral_table.hpp) against integrating every row. A table's points come
+// from the same rays, strips or layers as the rows (an annulus on an ellipse's row costs two: the
+// uniform ellipse at c and at c/B); they crowd where the integrals are hardest, next to the rim,
+// the edges and a map's grid lines, and cost 0.7-1.7 times a row of a test design. A reading
+// costs ~0.3 us. The points a table needs range from ~2,400 (ellipse:0.6, Hertz) to ~66,000 (the
+// 13 x 9 footprint map) and 190,000 (a rough 15 x 15 map), and a map's build time grows with the
+// square of its cells. So a build is attempted with a budget of as many points as the rows would
+// cost (spot_table_budget) and abandoned before it would exceed it (model::SpotTableOverBudget):
+// the rows are then integrated, and the attempt has cost about what they do. Either way one pass
+// costs at most ~2-3 times the cheaper of the two (experiments/README.md, "Contact spots").
+// Below kSpotTableMinRows rows no table is attempted.
 inline constexpr std::size_t kSpotTableMinRows = 2000;
-inline constexpr std::size_t kMapTableMinRows = 100000;
 
-inline std::size_t spot_table_min_rows(const model::ContactSpot& spot,
-                                       const model::PressureLaw<double>& law) {
-  return spot.kind == model::SpotKind::Map || law.kind == model::PressureKind::Table
-             ? kMapTableMinRows
-             : kSpotTableMinRows;
+inline std::size_t spot_table_budget(const model::ContactSpot& spot,
+                                     const model::PressureLaw<double>& law, std::size_t rows) {
+  const std::size_t points_per_row =
+      spot.kind == model::SpotKind::Ellipse && law.kind == model::PressureKind::Annulus ? 2 : 1;
+  const std::size_t most = model::SpotIntegralTable::kMaxPoints;
+  if (rows < kSpotTableMinRows) return 0;
+  return rows > most / points_per_row ? most : rows * points_per_row;
 }
 
 // The spot with its integrals tabulated for the exact variant at aspect q and exponent n (power
 // law; ignored otherwise): an ellipse, a rectangle or a map, not the circle (the ring model).
 // `threads` as SpotIntegralTable's; `stop` may end the build early
-// (model::SpotTableBuildStopped).
-inline model::ContactSpot spot_with_table(ModelKind kind, const model::PressureLaw<double>& law,
-                                          double q, double n, const model::ContactSpot& spot,
-                                          const std::function<bool()>& stop = {}, int threads = 0) {
+// (model::SpotTableBuildStopped), and a build that would compute more than `max_points` points
+// throws model::SpotTableOverBudget.
+inline model::ContactSpot spot_with_table(
+    ModelKind kind, const model::PressureLaw<double>& law, double q, double n,
+    const model::ContactSpot& spot, const std::function<bool()>& stop = {}, int threads = 0,
+    std::size_t max_points = model::SpotIntegralTable::kMaxPoints) {
   if (kind != ModelKind::Exact || spot.kind == model::SpotKind::Circle) return spot;
   model::PressureLaw<double> at = law;
   if (at.kind == model::PressureKind::Power) at.n = n;
   if (spot.table && spot.table->matches(spot, q, at)) return spot;
   model::ContactSpot out = spot;
-  out.table = std::make_shared<const model::SpotIntegralTable>(spot, at, q, stop, threads);
+  out.table =
+      std::make_shared<const model::SpotIntegralTable>(spot, at, q, stop, threads, max_points);
   return out;
 }
 
-// The same for one pass over `rows` rows: the spot as given where integrating them is cheaper.
+// The same for one pass over `rows` rows: the spot as given where integrating them is cheaper
+// (spot_table_budget).
 inline model::ContactSpot spot_for_rows(ModelKind kind, const model::PressureLaw<double>& law,
                                         double q, double n, std::size_t rows,
                                         const model::ContactSpot& spot) {
-  return rows >= spot_table_min_rows(spot, law) ? spot_with_table(kind, law, q, n, spot) : spot;
+  const std::size_t budget = spot_table_budget(spot, law, rows);
+  if (budget == 0) return spot;
+  try {
+    return spot_with_table(kind, law, q, n, spot, {}, 0, budget);
+  } catch (const model::SpotTableOverBudget&) {
+    return spot;
+  }
 }
 
 // Evaluates one variant for a fixed parameter vector; construct once, call per row.

@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <frictionid/model/spot_integral_table.hpp>
+#include <frictionid/model/spot_point_integrator.hpp>
+#include <frictionid/model_variant.hpp>
 #include <frictionid/synthetic_data.hpp>
 #include "identify/spot_cache.hpp"
 #include "support/matched_digits.hpp"
@@ -126,12 +129,17 @@ TEST(SpotFit, TheRowCacheHoldsEverySpinningRowAtTheStartingAspectAndNothingWhenT
   EXPECT_FALSE(spot_cache_for_rows(d, power, 2, {}));
 }
 
-// From kSpotTableMinRows rows the cache reads a table of the plane instead of integrating every
-// row: the same integrals within 3e-11 of the load A0.
-TEST(SpotFit, ManyRowsAreCachedFromATableWithin3e11OfTheLoad) {
+// The points a table of this spot needs (model_variant.hpp, spot_table_budget).
+std::size_t table_points(const model::ContactSpot& spot, const Law& law, double q) {
+  return model::SpotIntegralTable(spot, law, q, {}, 2).stats().points;
+}
+
+// Where the rows outnumber the points a table needs, the cache reads a table of the plane
+// instead of integrating every row: the same integrals within 3e-11 of the load A0.
+TEST(SpotFit, RowsOutnumberingATablesPointsAreCachedFromTheTableWithin3e11OfTheLoad) {
   const auto spot = model::ContactSpot::rect(0.7);
   SyntheticDesign design = small_design();
-  design.rows = kSpotTableMinRows;
+  design.rows = table_points(spot, Law::hertz(), 0.7) + 100;  // every row spins
   const Dataset d = generate_dataset(ModelKind::Exact, Law::hertz(), truth_on(Law::hertz(), spot),
                                      design, NoiseSpec{}, 6, spot);
   const FitSettings s = FitSettings::defaults(ModelKind::Exact, Law::hertz(), "hertz", spot);
@@ -151,6 +159,32 @@ TEST(SpotFit, ManyRowsAreCachedFromATableWithin3e11OfTheLoad) {
   }
   EXPECT_LT(worst, 3e-11);
   EXPECT_GT(worst, 0.0);  // it is a table, not the integrator
+}
+
+// Fewer rows than the table's points (but more than kSpotTableMinRows): the build is abandoned
+// before it would cost more than the rows, and every row is integrated, bit for bit what the
+// row's own integrator gives. A map's table needs tens of thousands of points, more with every
+// cell, so its rows are integrated up to that many.
+TEST(SpotFit, RowsFewerThanATablesPointsAreIntegratedEach) {
+  const auto spot = model::ContactSpot::rect(0.7);
+  const std::size_t points = table_points(spot, Law::hertz(), 0.7);
+  ASSERT_GT(points, kSpotTableMinRows + 200);
+  SyntheticDesign design = small_design();
+  design.rows = kSpotTableMinRows + 100;
+  const Dataset d = generate_dataset(ModelKind::Exact, Law::hertz(), truth_on(Law::hertz(), spot),
+                                     design, NoiseSpec{}, 6, spot);
+  const FitSettings s = FitSettings::defaults(ModelKind::Exact, Law::hertz(), "hertz", spot);
+  const auto cache = spot_cache_for_rows(d, s, 2, {});
+  ASSERT_TRUE(cache);
+  const model::SpotPointIntegrator integrate(spot, Law::hertz(), 0.7);
+  for (std::size_t i = 0; i < d.rows(); i += 41) {
+    const auto [cx, cy] = model::rotation_centre(d.v_x[i], d.v_y[i], d.omega[i], d.R[i]);
+    const auto a = cache->find(cx, cy)->channels(), b = integrate(cx, cy).channels();
+    for (int k = 0; k < 12; ++k) EXPECT_EQ(a[k], b[k]) << "row " << i << ", channel " << k;
+  }
+  // One pass over rows (eval, generate) decides the same way.
+  EXPECT_FALSE(spot_for_rows(ModelKind::Exact, Law::hertz(), 0.7, 1.0, points - 1, spot).table);
+  EXPECT_TRUE(spot_for_rows(ModelKind::Exact, Law::hertz(), 0.7, 1.0, points, spot).table);
 }
 
 TEST(SpotFit, ApproximantsRefuseANonCircularSpot) {

@@ -451,6 +451,34 @@ TEST(SpotIntegralTable, AStopRequestEndsTheBuild) {
   EXPECT_LT(asked.load(), 1000);
 }
 
+// A build computes at most max_points points, and says so before computing a round that would
+// take it beyond: one point short of what a table needs and it throws, having computed none of
+// that round; with exactly as many it is the same table as without a limit. Its caller then
+// integrates the rows instead (model_variant.hpp).
+TEST(SpotIntegralTable, ABuildThrowsBeforeItWouldExceedItsBudgetAndWithinItIsTheSameTable) {
+  std::atomic<std::size_t> asked{0};
+  const auto count = [&asked] {
+    ++asked;
+    return false;
+  };
+  for (const NamedLaw& l : {NamedLaw{"hertz", PressureLaw<double>::hertz()},
+                            NamedLaw{"annulus:0.5", PressureLaw<double>::annulus(0.5)}}) {
+    SCOPED_TRACE(l.name);
+    const ContactSpot spot = ContactSpot::ellipse(0.6);
+    const SpotIntegralTable full(spot, l.law, 0.6, {}, 2);
+    const std::size_t points = full.stats().points;
+    asked = 0;
+    EXPECT_THROW(SpotIntegralTable(spot, l.law, 0.6, count, 2, points - 1), SpotTableOverBudget);
+    EXPECT_LT(asked.load(), points - 1);  // the round that would overrun was not computed
+    const SpotIntegralTable exact(spot, l.law, 0.6, {}, 2, points);
+    EXPECT_EQ(exact.stats().points, points);
+    for (const auto& c : sample_centres(SpotKind::Ellipse, 0.6, 100, 5)) {
+      const auto a = channels(full(c[0], c[1])), b = channels(exact(c[0], c[1]));
+      for (std::size_t k = 0; k < 12; ++k) EXPECT_EQ(a[k], b[k]);
+    }
+  }
+}
+
 TEST(SpotIntegralTable, ItServesOnlyItsSpotAspectAndLaw) {
   const SpotIntegralTable table(ContactSpot::ellipse(0.8), PressureLaw<double>::annulus(0.5), 0.8);
   EXPECT_TRUE(table.matches(ContactSpot::ellipse(0.8), 0.8, PressureLaw<double>::annulus(0.5)));

@@ -250,6 +250,13 @@ class SpotTableBuildStopped : public std::runtime_error {
   SpotTableBuildStopped() : std::runtime_error("the spot-integral table's build was stopped") {}
 };
 
+// Thrown by a table build before it would compute more points than its budget allows: its
+// caller integrates instead (model_variant.hpp, spot_table_budget).
+class SpotTableOverBudget : public std::runtime_error {
+ public:
+  SpotTableOverBudget() : std::runtime_error("the spot-integral table would exceed its budget") {}
+};
+
 // Calls work(i) for every i in [0, count), on any number of threads, and returns when all calls
 // have finished. A fit passes its own thread pool.
 using SpotParallelFor =
@@ -291,21 +298,29 @@ class SpotIntegralTable {
   // Tabulates the integrals of an ellipse or a rectangle (a circle is the ellipse q = 1) with
   // aspect q and this law, or of a pressure map (q and the law are ignored; the table keeps the
   // map). A spot without load throws std::invalid_argument. The build asks `stop` before every
-  // point, from the worker threads, and throws SpotTableBuildStopped when it says so.
-  SpotIntegralTable(const ContactSpot& spot, const PressureLaw<double>& law, double q,
-                    const std::function<bool()>& stop = {}, int threads = 0)
-      : SpotIntegralTable(spot, law, q, stop, spot_threads(threads)) {}
+  // point, from the worker threads, and throws SpotTableBuildStopped when it says so. It
+  // computes at most `max_points` points (stats().points; a table law's points, not those of
+  // the uniform ellipse's table they come from) and throws SpotTableOverBudget, before computing
+  // them, when a round would take it beyond: a table whose points are noisy (rounding in the
+  // integrals it samples) would otherwise halve its cells to kMaxDepth.
+  static constexpr std::size_t kMaxPoints = 2000000;  // ~300 MB of points during the build
 
   SpotIntegralTable(const ContactSpot& spot, const PressureLaw<double>& law, double q,
-                    const std::function<bool()>& stop, const SpotParallelFor& parallel)
-      : SpotIntegralTable(spot, law, q, stop, parallel, 1.0) {}
+                    const std::function<bool()>& stop = {}, int threads = 0,
+                    std::size_t max_points = kMaxPoints)
+      : SpotIntegralTable(spot, law, q, stop, spot_threads(threads), max_points) {}
+
+  SpotIntegralTable(const ContactSpot& spot, const PressureLaw<double>& law, double q,
+                    const std::function<bool()>& stop, const SpotParallelFor& parallel,
+                    std::size_t max_points = kMaxPoints)
+      : SpotIntegralTable(spot, law, q, stop, parallel, 1.0, max_points) {}
 
  private:
   // The same with every tolerance `tighter` times its own (a table that others take
   // differences of).
   SpotIntegralTable(const ContactSpot& spot, const PressureLaw<double>& law, double q,
                     const std::function<bool()>& stop, const SpotParallelFor& parallel,
-                    double tighter)
+                    double tighter, std::size_t max_points)
       : kind_(spot.kind == SpotKind::Map    ? SpotKind::Map
               : spot.kind == SpotKind::Rect ? SpotKind::Rect
                                             : SpotKind::Ellipse),
@@ -331,7 +346,8 @@ class SpotIntegralTable {
       const double B = law.inner_radius();
       // Its error, e(c) + B^(2+d) e(c/B), is held to the annulus' own load (1 - B^2) A0.
       uniform_.reset(new SpotIntegralTable(ContactSpot::ellipse(q_), PressureLaw<double>::uniform(),
-                                           q_, stop, parallel, (1.0 - B * B) / (1.0 + B * B)));
+                                           q_, stop, parallel, (1.0 - B * B) / (1.0 + B * B),
+                                           max_points));
       inner_ = B;
       for (int j = 0; j < kChannels; ++j)
         inner_weight_[j] = std::pow(B, 2 + SpotIntegrals::kChannelDegree[j]);
@@ -355,7 +371,8 @@ class SpotIntegralTable {
       stats_.layer_points = uniform->stats().points;
       layers.emplace(std::move(uniform), law, q_);
     }
-    Builder{*this, integrate, strips, map_strips, layers ? &*layers : nullptr, stop, parallel, {}}
+    Builder{*this, integrate, strips,     map_strips, layers ? &*layers : nullptr,
+            stop,  parallel,  max_points, {}}
         .run();
   }
 
@@ -1087,6 +1104,7 @@ class SpotIntegralTable {
     const EllipseLawIntegrator<SpotIntegralTable>* layers;  // a table law on an ellipse
     const std::function<bool()>& stop;
     const SpotParallelFor& parallel;
+    std::size_t max_points;
 
     static constexpr double kCheckX = 0.2871, kCheckY = -0.6233;  // between the extreme points
 
@@ -1173,6 +1191,8 @@ class SpotIntegralTable {
               want(key_of(c, node(i0, c.n0), node(i1, c.n1)));
         if (!c.check_known) want(key_of(c, kCheckX, kCheckY));
       }
+      if (jobs.size() > max_points - std::min(max_points, t.stats_.points))
+        throw SpotTableOverBudget();
       std::vector<Values> values(jobs.size());
       std::atomic<bool> stopped{false};
       parallel(jobs.size(), [&](std::size_t i) {
