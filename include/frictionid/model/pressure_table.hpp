@@ -115,6 +115,29 @@ class PressureTable {
   };
   const std::vector<Jump>& jumps() const { return jumps_; }
 
+  // g as a cubic in u = rho - a on each interval [a, b) between two samples of a run, and as a
+  // constant below the first sample and from the last on (sigma0 = (1 - rho^2)^gamma g): the
+  // interpolant, piece by piece, for integrals that take it exactly (ellipse_law_integrator.hpp).
+  struct Cubic {
+    double a, b;
+    std::array<double, 4> c;  // g = c0 + c1 u + c2 u^2 + c3 u^3
+  };
+  std::vector<Cubic> cubics() const {
+    std::vector<Cubic> out;
+    if (rho_.front() > 0.0) out.push_back({0.0, rho_.front(), {g_.front(), 0.0, 0.0, 0.0}});
+    for (std::size_t i = 0; i + 1 < rho_.size(); ++i) {
+      const double h = rho_[i + 1] - rho_[i];
+      if (!(h > 0.0)) continue;  // a step: the next run starts here
+      const double d = (g_[i + 1] - g_[i]) / h;
+      out.push_back({rho_[i],
+                     rho_[i + 1],
+                     {g_[i], slope_[i], (3.0 * d - 2.0 * slope_[i] - slope_[i + 1]) / h,
+                      (slope_[i] + slope_[i + 1] - 2.0 * d) / (h * h)}});
+    }
+    if (rho_.back() < 1.0) out.push_back({rho_.back(), 1.0, {g_.back(), 0.0, 0.0, 0.0}});
+    return out;
+  }
+
   // How strongly sigma0 kinks at each sample inside a run: the jump of its second derivative
   // there (its interpolant is C^1), largest first. A spot's table grades its cells at the
   // strongest of them (spot_integral_table.hpp).
