@@ -3,8 +3,10 @@
 // production PressureLaw and the oracle's RadialLaw (spot_reference.hpp).
 #pragma once
 
+#include <frictionid/model/contact_spot.hpp>
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/model/pressure_table.hpp>
+#include <frictionid/model/spot_model.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -128,6 +130,31 @@ inline double friction_error(const spot_ref::Result& a, const spot_ref::Result& 
 inline double moment_error(const spot_ref::Result& a, const spot_ref::Result& b,
                            const spot_ref::Motion& m) {
   return std::max(std::fabs(a.M_roll - b.M_roll), std::fabs(a.M_tilt - b.M_tilt)) / (m.N * m.R);
+}
+
+// Moves the centre of rotation c = (-v_y, v_x)/(omega R) to scale (cos t, q sin t), on the rim
+// of the ellipse of aspect q scaled by `scale`; omega is kept (1 where it was 0).
+inline void centre_on_ellipse(spot_ref::Motion& m, double q, double t, double scale) {
+  const double w = (m.omega != 0.0 ? m.omega : 1.0) * m.R;
+  m.omega = w / m.R;
+  m.v_x = scale * q * std::sin(t) * w;
+  m.v_y = -scale * std::cos(t) * w;
+}
+
+// The model on the oracle's ellipse (every row integrated, no table) against the oracle:
+// friction_error and moment_error.
+struct OracleErrors {
+  double friction, moment;
+};
+inline OracleErrors ellipse_vs_oracle(const spot_ref::Spot& ref,
+                                      const model::PressureLaw<double>& law,
+                                      const spot_ref::Params& p, const spot_ref::Motion& m) {
+  const model::Kinematics k{m.v_x, m.v_y, m.omega, m.N, m.R};
+  const model::Resultants<double> r = model::spot_resultants<double>(
+      {p.f, p.kappa, p.h, p.h_y, ref.q}, law, model::ContactSpot::ellipse(ref.q), k);
+  const spot_ref::Result got{r.T_x, r.T_y, r.M_z, r.M_roll, r.M_tilt, r.N, 0.0};
+  const spot_ref::Result want = spot_ref::spot_reference(ref, p, m);
+  return {friction_error(got, want, p, m), moment_error(got, want, m)};
 }
 
 inline spot_ref::Spot ellipse(double q, const spot_ref::RadialLaw& law) {
