@@ -107,18 +107,6 @@ TEST(EllipseLawIntegrator, EveryLawMatchesTheRaysOnEllipsesOfAspect0_1To4) {
   std::cout << "[ worst    ] layers vs rays, any channel / A0: " << worst << "\n";
 }
 
-// A smooth profile times (1 - rho^2)^gamma, sampled at `samples` equal steps; its interpolant
-// kinks at every sample.
-PressureLaw<double> many_samples(int samples, double gamma) {
-  std::vector<double> rho, sig;
-  for (int i = 0; i < samples; ++i) {
-    const double r = i / static_cast<double>(samples - 1);
-    rho.push_back(r);
-    sig.push_back(std::pow(1.0 - r * r, gamma) * (1.0 + 0.3 * std::sin(7.0 * r)));
-  }
-  return PressureLaw<double>::tabulated(std::make_shared<const PressureTable>(rho, sig));
-}
-
 // A table of many samples takes the product rule: the smooth factor at Chebyshev points of
 // parts that ignore the samples, integrated against the law's piecewise slope exactly. Against
 // Gauss–Legendre between every two samples (by_samples), which the test above checks against
@@ -135,7 +123,7 @@ TEST(EllipseLawIntegrator, ATableOfManySamplesByTheProductRuleMatchesGaussLegend
         ContactSpot::ellipse(q), PressureLaw<double>::uniform(), q, std::function<bool()>{}, 0);
     for (const Case& k :
          {Case{201, 0.0}, Case{201, 0.5}, Case{101, 1.5}, Case{80, 0.5}, Case{1001, 0.5}}) {
-      const PressureLaw<double> law = many_samples(k.samples, k.gamma);
+      const PressureLaw<double> law = testing::spot_cases::sampled_table(k.samples, k.gamma);
       const EllipseLawIntegrator<SpotIntegralTable> product(uniform, law, q),
           cuts(uniform, law, q, true);
       ASSERT_TRUE(product.uses_product_rule());

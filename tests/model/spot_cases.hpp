@@ -57,6 +57,19 @@ inline LawCase kinked_step_table() {
               std::make_shared<const model::PressureTable>(rho, sig))};
 }
 
+// A smooth profile times (1 - rho^2)^gamma sampled at `samples` equal steps: its interpolant
+// kinks at every sample (gamma > 0: the table fits its own rim exponent).
+inline model::PressureLaw<double> sampled_table(int samples, double gamma) {
+  std::vector<double> rho, sig;
+  for (int i = 0; i < samples; ++i) {
+    const double r = i / static_cast<double>(samples - 1);
+    rho.push_back(r);
+    sig.push_back(std::pow(1.0 - r * r, gamma) * (1.0 + 0.3 * std::sin(7.0 * r)));
+  }
+  return model::PressureLaw<double>::tabulated(
+      std::make_shared<const model::PressureTable>(rho, sig));
+}
+
 inline std::vector<LawCase> law_cases() {
   using L = model::PressureLaw<double>;
   return {{"uniform", spot_ref::uniform_law(), L::uniform()},

@@ -34,8 +34,8 @@
 // pressure_table.hpp), and the rest of the integrand, F = (1 - s^2)^(gamma - 1) s^(2+d) U(c/s),
 // does not see them. So each part (halved until its singularities keep 2 half-lengths away)
 // takes F at Chebyshev points, as many as interpolating it to e^-28 asks for, and integrates the
-// interpolant against Q exactly (product integration; the moments of Q against T_j by
-// Gauss–Legendre on each of its pieces). Parts next to rho_e or a fractional rim stay cut at the
+// interpolant against Q exactly (product integration, product_rule.hpp; the moments of Q
+// against T_j by Gauss–Legendre on each of its pieces). Parts next to rho_e or a fractional rim stay cut at the
 // samples within them. Readings no longer grow with the samples: 230-570 a point for 201-1001
 // samples where the cuts took 1,200-5,600; 2.5-4 times faster, within 3e-13 A0 of the cuts.
 #pragma once
@@ -51,6 +51,7 @@
 #include <frictionid/model/ellipse_nearest_point.hpp>
 #include <frictionid/model/gauss_legendre_rule.hpp>
 #include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model/product_rule.hpp>
 #include <frictionid/model/spot_integrals.hpp>
 #include <frictionid/model/tanh_sinh_rule.hpp>
 
@@ -121,7 +122,6 @@ class EllipseLawIntegrator {
   static constexpr double kNearRim = 0.9;
   static constexpr double kZProduct = 2.0;     // singularities this far: one product rule
   static constexpr double kLogProduct = 28.0;  // -ln of its interpolation's relative error
-  static constexpr int kMostProduct = 48;
   // Fewer samples: Gauss–Legendre between them costs no more than the product rule's points.
   static constexpr std::size_t kProductSamples =
       64;  // rho_e this far across the rim piece: cut in w
@@ -275,87 +275,37 @@ class EllipseLawIntegrator {
     }
   }
 
-  // The product rule on a part [s0, s1] (above): F at n Chebyshev points x_i, each with the
-  // weight W_i = (2/n) sum'_j mu_j T_j(x_i), the integral of Q times the i-th Lagrange
-  // polynomial (sum': the term j = 0 halved).
+  // The product rule on a part [s0, s1] (above, product_rule.hpp).
   void product_rule(const Centre& c, double s0, double s1, double z, double* acc) const {
-    const int n = product_points(z);
-    double mu[kMostProduct];
-    moments(s0, s1, n, mu);
+    const int n = product_points(bernstein_parameter(z), kLogProduct, 4);  // s^(2+d): four
+    double mu[kMostProductPoints], x[kMostProductPoints], W[kMostProductPoints];
+    chebyshev_moments(slope_pieces_, s0, s1, n, 4, false, mu);
+    product_weights(mu, n, x, W);
     const double mid = 0.5 * (s0 + s1), half = 0.5 * (s1 - s0);
     for (int i = 0; i < n; ++i) {
-      const double x = std::cos(M_PI * (2 * i + 1) / (2.0 * n));
-      double t0 = 1.0, t1 = x, W = 0.5 * mu[0] + mu[1] * x;
-      for (int j = 2; j < n; ++j) {
-        const double t2 = 2.0 * x * t1 - t0;
-        W += mu[j] * t2;
-        t0 = t1;
-        t1 = t2;
-      }
-      const double s = mid + half * x;
+      const double s = mid + half * x[i];
       const double rim = gamma_ > 0.0 ? std::pow((1.0 - s) * (1.0 + s), gamma_ - 1.0) : 1.0;
-      layer(*c.ray, s, 2.0 / n * W * rim, acc);
-    }
-  }
-
-  // mu_j = ∫ Q(s) T_j(x) ds over [s0, s1], x its coordinate in [-1, 1], j < n: Gauss–Legendre
-  // on each piece of Q, exact for Q T_j (degree n + 3).
-  void moments(double s0, double s1, int n, double* mu) const {
-    std::fill(mu, mu + n, 0.0);
-    const std::vector<QuadratureNode>& rule = gauss_legendre_rule((n + 5) / 2);
-    const double mid = 0.5 * (s0 + s1), inv_half = 2.0 / (s1 - s0);
-    auto k = std::upper_bound(slope_pieces_.begin(), slope_pieces_.end(), s0,
-                              [](double s, const SlopePiece& piece) { return s < piece.b; });
-    for (; k != slope_pieces_.end() && k->a < s1; ++k) {
-      const double lo = std::max(k->a, s0), hi = std::min(k->b, s1), len = hi - lo;
-      if (!(len > 0.0)) continue;
-      for (const QuadratureNode& g : rule) {
-        const double s = lo + len * g.from_left, u = s - k->a;
-        const double w = g.weight * len *
-                         (k->q[0] + u * (k->q[1] + u * (k->q[2] + u * (k->q[3] + u * k->q[4]))));
-        const double x = (s - mid) * inv_half;
-        double t0 = 1.0, t1 = x;
-        mu[0] += w;
-        mu[1] += w * x;
-        for (int j = 2; j < n; ++j) {
-          const double t2 = 2.0 * x * t1 - t0;
-          mu[j] += w * t2;
-          t0 = t1;
-          t1 = t2;
-        }
-      }
+      layer(*c.ray, s, W[i] * rim, acc);
     }
   }
 
   // Q on [a, b) as a polynomial in u = s - a: 2 gamma s g - (1 - s^2) g' (gamma = 0: -g').
-  struct SlopePiece {
-    double a, b;
-    std::array<double, 5> q;
-  };
-  SlopePiece slope_piece(const PressureTable::Cubic& g) const {
+  PolynomialPiece slope_piece(const PressureTable::Cubic& g) const {
     const double a = g.a;
     const std::array<double, 3> dg = {g.c[1], 2.0 * g.c[2], 3.0 * g.c[3]};
-    SlopePiece out{g.a, g.b, {}};
+    PolynomialPiece out{g.a, g.b, {}};
     if (!(gamma_ > 0.0)) {
-      for (std::size_t i = 0; i < 3; ++i) out.q[i] = -dg[i];
+      for (std::size_t i = 0; i < 3; ++i) out.c[i] = -dg[i];
       return out;
     }
     const std::array<double, 3> rim = {(1.0 - a) * (1.0 + a), -2.0 * a, -1.0};  // 1 - s^2
     for (std::size_t i = 0; i < 4; ++i) {                                       // 2 gamma s g
-      out.q[i] += 2.0 * gamma_ * a * g.c[i];
-      out.q[i + 1] += 2.0 * gamma_ * g.c[i];
+      out.c[i] += 2.0 * gamma_ * a * g.c[i];
+      out.c[i + 1] += 2.0 * gamma_ * g.c[i];
     }
     for (std::size_t i = 0; i < 3; ++i)
-      for (std::size_t j = 0; j < 3; ++j) out.q[i + j] -= rim[i] * dg[j];
+      for (std::size_t j = 0; j < 3; ++j) out.c[i + j] -= rim[i] * dg[j];
     return out;
-  }
-
-  // Chebyshev points for a part whose nearest singularity lies z half-lengths from its middle:
-  // the interpolant errs by ~rho^-n, rho the Bernstein parameter; s^(2+d) takes four more.
-  static int product_points(double z) {
-    if (!(z > 1.0)) return kMostProduct;
-    const double n = std::ceil(kLogProduct / std::log(bernstein_parameter(z))) + 4.0;
-    return n < kMostProduct ? std::max(8, static_cast<int>(n)) : kMostProduct;
   }
 
   // Gauss–Legendre points for a piece whose nearest singularity lies z half-lengths from its
@@ -376,7 +326,7 @@ class EllipseLawIntegrator {
   std::vector<double> breaks_;  // 0, the law's breakpoints, 1
   bool product_ = false;        // a table law's slopes by the product rule
   double gamma_ = 0.0;          // its rim exponent
-  std::vector<SlopePiece> slope_pieces_;
+  std::vector<PolynomialPiece> slope_pieces_;
   bool density_ = false;
   int rim_power_ = 1;
   bool rim_smooth_ = true;

@@ -57,17 +57,16 @@
 // (degree 9, then 18: 66,000 for the 13 x 9 footprint, 2.5 s of CPU time at ~28 us a point;
 // 190,000 and 13 s for a rough random 15 x 15 grid).
 //
-// The points. Ellipse: SpotIntegrator, whose rays are closed forms under the power laws
-// (uniform, Hertz, parabolic, power:n: 6-20 us a point); under a table law, layers of the
-// uniform ellipse (ellipse_law_integrator.hpp) from that ellipse's own table, built first
-// (0.09-0.14 ms a point, any number of samples: from 64 a product rule whose readings do not
-// grow with them; the table then takes 9,000-30,000 points, every sample a line its cells
-// resolve). An annulus has no points of its own: it is the uniform
-// ellipse less the one scaled by its inner radius, two readings of the uniform table (built to
-// a tolerance tightened by (1 - B^2)/(1 + B^2), the annulus' load over what the two carry).
-// Rectangle:
-// RectStripIntegrator, the y-integral in closed form: 10-30 us a point, and exact next to the
-// corners, where SpotIntegrator's default angular rule errs by up to 5e-9 A0.
+// The points. Ellipse: SpotIntegrator, whose rays are closed forms under the power laws (uniform,
+// Hertz, parabolic, power:n: 6-20 us a point); under a table law, layers of the uniform ellipse
+// (ellipse_law_integrator.hpp) from that ellipse's own table, built first (0.09-0.14 ms a point,
+// any number of samples: from 64 a product rule whose readings do not grow with them; the table
+// then takes 9,000-30,000 points, every sample a line its cells resolve). An annulus has no points
+// of its own: it is the uniform ellipse less the one scaled by its inner radius, two readings of
+// the uniform table (built to a tolerance tightened by (1 - B^2)/(1 + B^2), the annulus' load over
+// what the two carry). Rectangle: RectStripIntegrator (rect_strip_integrator.hpp), the y-integral
+// in closed form: 10-30 us a point (a table law of 201-1001 samples: 20-65 us by the product rule),
+// and exact next to the corners, where SpotIntegrator's default angular rule errs by up to 5e-9 A0.
 //
 // Accuracy: within 3e-11 A0 of the integrals (|ex|, |ey| <= A0) over the whole plane for the
 // uniform, Hertz, parabolic and annulus laws and q from 0.4 to 2.5, measured at 4,000 random
@@ -101,149 +100,12 @@
 #include <frictionid/model/gauss_legendre_rule.hpp>
 #include <frictionid/model/map_strip_integrator.hpp>
 #include <frictionid/model/pressure_law.hpp>
+#include <frictionid/model/rect_strip_integrator.hpp>
 #include <frictionid/model/scalar_ops.hpp>
 #include <frictionid/model/spot_integrals.hpp>
 #include <frictionid/model/tanh_sinh_rule.hpp>
 
 namespace frictionid::model {
-
-// The twelve integrals of a rectangle |x| <= 1, |y| <= q whose pressure sigma0(|x|) is uniform
-// across y (docs/physics.md §9.1), by the y-integral in closed form and a 1-D quadrature in x.
-// With a = x - c_x, eta = y - c_y and rho = sqrt(a^2 + eta^2),
-//   ∫ e_x dy = -∫ eta/rho deta,   ∫ e_y dy = a ∫ deta/rho,
-// whose primitives in eta are rho, ln(eta + rho), (eta rho - a^2 ln(eta + rho))/2 and
-// rho^3/3 - a^2 rho (the weights y and y^2 expand in powers of eta), formed between the edges
-// eta0 = -q - c_y and eta1 = q - c_y without cancellation. The x-integrand is smooth but for
-// a ln|a| at x = c_x and the law's rim and breakpoints, where the x-range is cut; the fine
-// tanh-sinh rule reaches ~1e-14 A0 on every piece. Far from the rectangle (more than 2 max(1, q)
-// away) the closed forms' terms would cancel (they grow like |c|^2); there the y-integrand is
-// analytic over the strip and 4-10 Gauss–Legendre points take it. 10-30 us a point, against
-// 100-300 us for the ray integration of SpotIntegrator, whose default angular rule also errs by
-// up to 5e-9 A0 within 1e-4 of a corner, where this has no difficulty. Not for the ring law (no
-// density).
-class RectStripIntegrator {
- public:
-  // The x-range is cut at every breakpoint of the law, however many: a table is a cubic between
-  // two samples. A piece that ends at c_x or at the rim takes the fine tanh-sinh rule; any
-  // other Gauss–Legendre with as many points as its distance from the nearest singularity asks
-  // for (c_x +- i dist(c_y, |y| <= q), and +-1 where sigma0 ~ (1 - x^2)^gamma, gamma
-  // fractional): 4-8 for most of a fine table's pieces.
-  RectStripIntegrator(const PressureLaw<double>& law, double q) : law_(law), q_(q) {
-    for (double b : law_.breakpoints())
-      if (b > 0.0 && b < 1.0) breaks_.push_back(b);
-    const double gamma = law_rim_exponent(law_);
-    fractional_ = gamma != std::floor(gamma);
-  }
-
-  SpotIntegrals operator()(double cx, double cy) const {
-    std::vector<double> cuts = {-1.0, 0.0, 1.0};
-    for (double b : breaks_) {
-      cuts.push_back(b);
-      cuts.push_back(-b);
-    }
-    if (cx > -1.0 && cx < 1.0) cuts.push_back(cx);
-    std::sort(cuts.begin(), cuts.end());
-    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
-    const double q = q_, e0 = -q - cy, e1 = q - cy;
-    const double gap =
-        std::hypot(std::max(0.0, std::fabs(cx) - 1.0), std::max(0.0, std::fabs(cy) - q));
-    const bool far = gap > 2.0 * std::max(1.0, q);
-    // Far away the y-integrand's branch points c_y +- i|a| keep at least `gap` from the strip:
-    // Gauss–Legendre with as many points as that asks for (y^2 takes three of its degrees).
-    const std::vector<QuadratureNode>* y_rule =
-        far ? &gauss_legendre_rule(points_for(gap, 2.0 * q, 3)) : nullptr;
-    const double gap_y = std::max(0.0, std::fabs(cy) - q);  // the branch points' offset
-    double acc[12] = {};
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-      const double lo = cuts[k], hi = cuts[k + 1], len = hi - lo;
-      const bool ends = lo == cx || hi == cx || lo == -1.0 || hi == 1.0;
-      double distance = std::hypot(std::max({0.0, lo - cx, cx - hi}), gap_y);
-      if (fractional_) distance = std::min(distance, 1.0 - std::max(std::fabs(lo), std::fabs(hi)));
-      const int n = ends ? 0 : points_for(distance, len);
-      for (const QuadratureNode& node : n > 0 ? gauss_legendre_rule(n) : fine_rule()) {
-        const double x = lo + len * node.from_left;
-        // a = x - c_x and 1 - |x| to full precision next to the cut and the rim.
-        const double a = lo == cx   ? len * node.from_left
-                         : hi == cx ? -len * node.from_right
-                                    : x - cx;
-        const double ax = std::fabs(x);
-        const double rim = hi == 1.0    ? len * node.from_right
-                           : lo == -1.0 ? len * node.from_left
-                                        : 1.0 - ax;
-        const double W = node.weight * len * law_(std::min(1.0, ax), rim);
-        if (W == 0.0) continue;
-        double ex[3], ey[2];  // ∫ {1, y, y^2} e_x dy and ∫ {1, y} e_y dy over |y| <= q
-        if (far) {
-          ex[0] = ex[1] = ex[2] = ey[0] = ey[1] = 0.0;
-          for (const QuadratureNode& g : *y_rule) {
-            const double y = q * (g.from_left - g.from_right), w = 2.0 * q * g.weight;
-            const double eta = y - cy, inv = w / std::hypot(a, eta);
-            ex[0] -= eta * inv;
-            ex[1] -= y * eta * inv;
-            ex[2] -= y * y * eta * inv;
-            ey[0] += a * inv;
-            ey[1] += a * y * inv;
-          }
-        } else {
-          const double a2 = a * a;
-          const double r0 = std::sqrt(a2 + e0 * e0), r1 = std::sqrt(a2 + e1 * e1);
-          // [rho] and [ln(eta + rho)] between the edges (eta1 - eta0 = 2q): log1p where both
-          // edges lie on one side, the product where they straddle c_y.
-          const double d1 = -4.0 * q * cy / (r0 + r1);
-          double d0;
-          if (e0 >= 0.0)
-            d0 = std::log1p((2.0 * q + d1) / (e0 + r0));
-          else if (e1 <= 0.0)
-            d0 = std::log1p((2.0 * q - d1) / (r1 - e1));
-          else
-            d0 = a == 0.0 ? 0.0 : std::log((e1 + r1) * (r0 - e0) / a2);
-          const double ad0 = a == 0.0 ? 0.0 : a * d0;
-          // [eta rho - a^2 ln(eta + rho)]/2 and [rho^3/3 - a^2 rho]: their terms cancel to
-          // eps |a| |eta| at worst, negligible this near the strip.
-          const double d2 = 0.5 * (e1 * r1 - e0 * r0 - (a == 0.0 ? 0.0 : a2 * d0));
-          const double d3 = d1 * ((r1 * r1 + r1 * r0 + r0 * r0) / 3.0 - a2);
-          ex[0] = -d1;
-          ex[1] = -(d2 + cy * d1);
-          ex[2] = -(d3 + 2.0 * cy * d2 + cy * cy * d1);
-          ey[0] = ad0;
-          ey[1] = a * d1 + cy * ad0;
-        }
-        acc[0] += W * ex[0];
-        acc[1] += W * x * ex[0];
-        acc[2] += W * ex[1];
-        acc[3] += W * ey[0];
-        acc[4] += W * x * ey[0];
-        acc[5] += W * ey[1];
-        acc[6] += W * x * ey[0];
-        acc[7] += W * x * x * ey[0];
-        acc[8] += W * x * ey[1];
-        acc[9] += W * ex[1];
-        acc[10] += W * x * ex[1];
-        acc[11] += W * ex[2];
-      }
-    }
-    return SpotIntegrals::from_channels(acc);
-  }
-
- private:
-  static constexpr double kLog = 30.0;  // -ln of a piece's relative error
-  static constexpr int kLeast = 4;      // a cubic sigma0 times x^2: degree 5
-  static constexpr int kMost = 24;      // beyond: the fine rule
-
-  // Gauss–Legendre points for a piece whose nearest singularity lies `distance` from it (the
-  // Bernstein ellipse through a point that far beyond an end; the polynomial factor takes
-  // `degrees` of the rule's), 0 when it would take more than kMost.
-  static int points_for(double distance, double length, int degrees = 6) {
-    const double z = 1.0 + 2.0 * distance / length;
-    const double n = std::ceil(gauss_legendre_points(bernstein_parameter(z), kLog, degrees));
-    return n <= kMost ? std::max(kLeast, static_cast<int>(n)) : 0;
-  }
-
-  PressureLaw<double> law_;
-  double q_;
-  bool fractional_ = false;  // sigma0 ~ (1 - x^2)^gamma with gamma fractional: branch points at +-1
-  std::vector<double> breaks_;
-};
 
 // Thrown by a table build that its `stop` check asked to stop (a cancelled fit).
 class SpotTableBuildStopped : public std::runtime_error {
