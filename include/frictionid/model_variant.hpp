@@ -144,6 +144,19 @@ inline model::ContactSpot spot_for_rows(ModelKind kind, const model::PressureLaw
   }
 }
 
+// The spot with its table for work whose points are not known in advance (simulate, shimmy),
+// or as given, integrated point by point, where the table would need more than `max_points`
+// points (by default model::SpotIntegralTable::kMaxPoints: a map of thousands of cells).
+inline model::ContactSpot spot_with_table_if_bounded(
+    ModelKind kind, const model::PressureLaw<double>& law, double q, double n,
+    const model::ContactSpot& spot, std::size_t max_points = model::SpotIntegralTable::kMaxPoints) {
+  try {
+    return spot_with_table(kind, law, q, n, spot, {}, 0, max_points);
+  } catch (const model::SpotTableOverBudget&) {
+    return spot;
+  }
+}
+
 // Evaluates one variant for a fixed parameter vector; construct once, call per row.
 template <typename T>
 class ModelEvaluator {

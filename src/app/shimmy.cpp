@@ -101,7 +101,8 @@ struct ShimmyTables {
 ShimmyTables shimmy_tables(const ModelSetup& s) {
   if (s.kind != ModelKind::Exact) return {nullptr, s.contact};
   if (s.contact.kind != model::SpotKind::Circle)
-    return {nullptr, spot_with_table(s.kind, s.law, s.params[kQ], s.params[kN], s.contact)};
+    return {nullptr,
+            spot_with_table_if_bounded(s.kind, s.law, s.params[kQ], s.params[kN], s.contact)};
   // ring_table_for leaves the ring law out (its values are kernels, as cheap as a table); its
   // derivatives need the table all the same.
   if (s.law.kind == model::PressureKind::Ring)

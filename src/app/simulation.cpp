@@ -109,7 +109,7 @@ SimulationOutcome simulate(const SimulateRequest& r) {
       nullptr,
       s.contact.kind == model::SpotKind::Map
           ? s.contact  // integrated cell by cell (35 us) rather than tabulated (3 s)
-          : spot_with_table(s.kind, s.law, s.params[kQ], s.params[kN], s.contact));
+          : spot_with_table_if_bounded(s.kind, s.law, s.params[kQ], s.params[kN], s.contact));
   const auto friction = [&eval](const model::Kinematics& k) { return eval(k); };
   const auto start = std::chrono::steady_clock::now();
   SimulationOutcome out;

@@ -187,6 +187,18 @@ TEST(SpotFit, RowsFewerThanATablesPointsAreIntegratedEach) {
   EXPECT_TRUE(spot_for_rows(ModelKind::Exact, Law::hertz(), 0.7, 1.0, points, spot).table);
 }
 
+// Work whose points are not known in advance (simulate, shimmy) takes the table, or integrates
+// point by point where the table would exceed its cap, instead of failing.
+TEST(SpotFit, WorkWithoutARowCountTakesTheTableUnlessItWouldExceedItsCap) {
+  const auto spot = model::ContactSpot::ellipse(0.6);
+  const std::size_t points = table_points(spot, Law::hertz(), 0.6);
+  EXPECT_TRUE(spot_with_table_if_bounded(ModelKind::Exact, Law::hertz(), 0.6, 1.0, spot).table);
+  EXPECT_TRUE(
+      spot_with_table_if_bounded(ModelKind::Exact, Law::hertz(), 0.6, 1.0, spot, points).table);
+  EXPECT_FALSE(
+      spot_with_table_if_bounded(ModelKind::Exact, Law::hertz(), 0.6, 1.0, spot, points - 1).table);
+}
+
 TEST(SpotFit, ApproximantsRefuseANonCircularSpot) {
   FitSettings s = FitSettings::defaults(ModelKind::Seed, Law::hertz(), "hertz",
                                         model::ContactSpot::ellipse(0.7));

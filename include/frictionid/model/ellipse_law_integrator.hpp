@@ -35,9 +35,10 @@
 // does not see them. So each part (halved until its singularities keep 2 half-lengths away)
 // takes F at Chebyshev points, as many as interpolating it to e^-28 asks for, and integrates the
 // interpolant against Q exactly (product integration, product_rule.hpp; the moments of Q
-// against T_j by Gauss–Legendre on each of its pieces). Parts next to rho_e or a fractional rim stay cut at the
-// samples within them. Readings no longer grow with the samples: 230-570 a point for 201-1001
-// samples where the cuts took 1,200-5,600; 2.5-4 times faster, within 3e-13 A0 of the cuts.
+// against T_j by Gauss–Legendre on each of its pieces). Parts next to rho_e or a fractional rim
+// stay cut at the samples within them. Readings no longer grow with the samples: 240-570 a point
+// for 201-1001 samples where the cuts took 1,200-5,600; 2.5-4 times faster, within 2e-13 A0 of
+// the cuts.
 #pragma once
 
 #include <algorithm>
@@ -119,12 +120,11 @@ class EllipseLawIntegrator {
   static constexpr double kZ = 1.3;       // singularities this many half-lengths away: one rule
   static constexpr double kFloor = 1e-2;  // parts next to rho_e shorter than this times rho_e
   static constexpr int kMaxDepth = 60;
-  static constexpr double kNearRim = 0.9;
+  static constexpr double kNearRim = 0.9;      // rho_e this far across the rim piece: cut in w
   static constexpr double kZProduct = 2.0;     // singularities this far: one product rule
   static constexpr double kLogProduct = 28.0;  // -ln of its interpolation's relative error
   // Fewer samples: Gauss–Legendre between them costs no more than the product rule's points.
-  static constexpr std::size_t kProductSamples =
-      64;  // rho_e this far across the rim piece: cut in w
+  static constexpr std::size_t kProductSamples = 64;
 
   // U's readings along the ray c/s from one centre (SpotIntegralTable::Ray).
   using Ray = decltype(std::declval<const Uniform&>().ray(0.0, 0.0));
@@ -279,7 +279,7 @@ class EllipseLawIntegrator {
   void product_rule(const Centre& c, double s0, double s1, double z, double* acc) const {
     const int n = product_points(bernstein_parameter(z), kLogProduct, 4);  // s^(2+d): four
     double mu[kMostProductPoints], x[kMostProductPoints], W[kMostProductPoints];
-    chebyshev_moments(slope_pieces_, s0, s1, n, 4, false, mu);
+    chebyshev_moments(slope_pieces_, s0, s1, n, 4, mu);
     product_weights(mu, n, x, W);
     const double mid = 0.5 * (s0 + s1), half = 0.5 * (s1 - s0);
     for (int i = 0; i < n; ++i) {

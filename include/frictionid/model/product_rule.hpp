@@ -38,22 +38,20 @@ inline int product_points(double rho, double log_tolerance, int degrees) {
 }
 
 // The moments mu_j, j < n, over [s0, s1] of the weight the pieces (sorted, disjoint) make, each a
-// polynomial of at most `degree`; `mirror`: the weight at s is theirs at -s (s0 < s1 <= 0).
-// Gauss–Legendre on each piece within, exact for w T_j.
+// polynomial of at most `degree`: Gauss–Legendre on each piece within, exact for w T_j.
 inline void chebyshev_moments(const std::vector<PolynomialPiece>& pieces, double s0, double s1,
-                              int n, int degree, bool mirror, double* mu) {
+                              int n, int degree, double* mu) {
   std::fill(mu, mu + n, 0.0);
   const std::vector<QuadratureNode>& rule = gauss_legendre_rule((n + degree + 1) / 2);
   const double mid = 0.5 * (s0 + s1), inv_half = 2.0 / (s1 - s0);
-  const double u0 = mirror ? -s1 : s0, u1 = mirror ? -s0 : s1;  // the pieces' range
-  auto k = std::upper_bound(pieces.begin(), pieces.end(), u0,
-                            [](double u, const PolynomialPiece& p) { return u < p.b; });
-  for (; k != pieces.end() && k->a < u1; ++k) {
-    const double lo = std::max(k->a, u0), hi = std::min(k->b, u1), len = hi - lo;
+  auto k = std::upper_bound(pieces.begin(), pieces.end(), s0,
+                            [](double s, const PolynomialPiece& p) { return s < p.b; });
+  for (; k != pieces.end() && k->a < s1; ++k) {
+    const double lo = std::max(k->a, s0), hi = std::min(k->b, s1), len = hi - lo;
     if (!(len > 0.0)) continue;
     for (const QuadratureNode& g : rule) {
-      const double u = lo + len * g.from_left, w = g.weight * len * (*k)(u);
-      const double x = ((mirror ? -u : u) - mid) * inv_half;
+      const double s = lo + len * g.from_left, w = g.weight * len * (*k)(s);
+      const double x = (s - mid) * inv_half;
       double t0 = 1.0, t1 = x;
       mu[0] += w;
       mu[1] += w * x;

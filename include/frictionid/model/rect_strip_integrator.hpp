@@ -19,8 +19,9 @@
 // parts [k, k + 1]/2^L, halved towards c_x and (gamma fractional) the rim until their
 // singularities keep 2 half-lengths away; each takes that factor at Chebyshev points and
 // integrates it against g exactly (product_rule.hpp), with the moments of g, which depend only
-// on the part and the number of points, computed once per law (~1 MB). Parts of level 7 (1/128
-// long) next to c_x or the rim stay cut at the samples within, and at c_x.
+// on the part and the number of points, computed once per law (0.5 MB; 10 ms for 201 samples,
+// 44 ms for 1001). Parts of level 7 (1/128 long) next to c_x or the rim stay cut at the samples
+// within, and at c_x.
 #pragma once
 
 #include <algorithm>
@@ -70,7 +71,7 @@ class RectStripIntegrator {
           const double lo = std::ldexp(k, -level), hi = std::ldexp(k + 1, -level);
           for (int n : kPoints) {
             std::vector<double> mu(static_cast<std::size_t>(n));
-            chebyshev_moments(g_pieces_, lo, hi, n, 3, false, mu.data());
+            chebyshev_moments(g_pieces_, lo, hi, n, 3, mu.data());
             moments_.insert(moments_.end(), mu.begin(), mu.end());
           }
         }

@@ -223,7 +223,9 @@ class SpotIntegralTable {
     // on a rectangle only the ring (the others by strips). An annulus on an ellipse comes from
     // the uniform ellipse's table and a table law from layers of it (below).
     const SpotIntegrator integrate(spot, law, q_);
-    const RectStripIntegrator strips(law, q_);
+    // (The strips only on a rectangle: under a table law they compute its moments up front.)
+    const RectStripIntegrator strips(kind_ == SpotKind::Rect ? law : PressureLaw<double>::uniform(),
+                                     q_);
     const PressureMap none;
     const MapStripIntegrator map_strips(map_ ? *map_ : none);
     // A table law on an ellipse: its points from the uniform ellipse's table, layer by layer.
