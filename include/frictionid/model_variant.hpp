@@ -130,23 +130,9 @@ inline model::ContactSpot spot_with_table(
   return out;
 }
 
-// The same for one pass over `rows` rows: the spot as given where integrating them is cheaper
-// (spot_table_budget).
-inline model::ContactSpot spot_for_rows(ModelKind kind, const model::PressureLaw<double>& law,
-                                        double q, double n, std::size_t rows,
-                                        const model::ContactSpot& spot) {
-  const std::size_t budget = spot_table_budget(spot, law, rows);
-  if (budget == 0) return spot;
-  try {
-    return spot_with_table(kind, law, q, n, spot, {}, 0, budget);
-  } catch (const model::SpotTableOverBudget&) {
-    return spot;
-  }
-}
-
-// The spot with its table for work whose points are not known in advance (simulate, shimmy),
-// or as given, integrated point by point, where the table would need more than `max_points`
-// points (by default model::SpotIntegralTable::kMaxPoints: a map of thousands of cells).
+// The spot with its table, or as given, integrated point by point, where the table would need
+// more than `max_points` points: by default model::SpotIntegralTable::kMaxPoints (a map of
+// thousands of cells), for work whose points are not known in advance (simulate, shimmy).
 inline model::ContactSpot spot_with_table_if_bounded(
     ModelKind kind, const model::PressureLaw<double>& law, double q, double n,
     const model::ContactSpot& spot, std::size_t max_points = model::SpotIntegralTable::kMaxPoints) {
@@ -155,6 +141,15 @@ inline model::ContactSpot spot_with_table_if_bounded(
   } catch (const model::SpotTableOverBudget&) {
     return spot;
   }
+}
+
+// The same for one pass over `rows` rows: the spot as given where integrating them is cheaper
+// (spot_table_budget).
+inline model::ContactSpot spot_for_rows(ModelKind kind, const model::PressureLaw<double>& law,
+                                        double q, double n, std::size_t rows,
+                                        const model::ContactSpot& spot) {
+  const std::size_t budget = spot_table_budget(spot, law, rows);
+  return budget == 0 ? spot : spot_with_table_if_bounded(kind, law, q, n, spot, budget);
 }
 
 // Evaluates one variant for a fixed parameter vector; construct once, call per row.

@@ -124,10 +124,9 @@ TEST(EllipseLawIntegrator, ATableOfManySamplesByTheProductRuleMatchesGaussLegend
           cuts(uniform, law, q, true);
       const double A0 = spot_moments(ContactSpot::ellipse(q), law_moments(law), q).A0;
       worst = std::max(
-          worst, sc::product_rule_difference(
-                     product, cuts, centres(q, 0x9a11 + static_cast<std::uint64_t>(k.samples)), A0,
-                     std::to_string(k.samples) + " samples, gamma " + std::to_string(k.gamma) +
-                         ", q " + std::to_string(q)));
+          worst,
+          sc::product_rule_difference(
+              product, cuts, centres(q, 0x9a11 + static_cast<std::uint64_t>(k.samples)), A0, k, q));
     }
   }
   std::cout << "[ worst    ] product rule vs Gauss–Legendre between samples, any channel / A0: "

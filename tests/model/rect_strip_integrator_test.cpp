@@ -71,12 +71,11 @@ TEST(RectStripIntegrator, ATableOfManySamplesByTheProductRuleMatchesGaussLegendr
       const PressureLaw<double> law = sc::sampled_table(k.samples, k.gamma);
       const RectStripIntegrator product(law, q), cuts(law, q, true);
       const double A0 = spot_moments(ContactSpot::rect(q), law_moments(law), q).A0;
-      worst = std::max(
-          worst, sc::product_rule_difference(
-                     product, cuts,
-                     centres(q, k.samples, 0x5c7 + static_cast<std::uint64_t>(k.samples)), A0,
-                     std::to_string(k.samples) + " samples, gamma " + std::to_string(k.gamma) +
-                         ", q " + std::to_string(q)));
+      worst =
+          std::max(worst, sc::product_rule_difference(
+                              product, cuts,
+                              centres(q, k.samples, 0x5c7 + static_cast<std::uint64_t>(k.samples)),
+                              A0, k, q));
     }
   std::cout << "[ worst    ] product rule vs Gauss–Legendre between samples, any channel / A0: "
             << worst << "\n";

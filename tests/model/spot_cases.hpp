@@ -73,9 +73,10 @@ inline model::PressureLaw<double> sampled_table(int samples, double gamma) {
       std::make_shared<const model::PressureTable>(rho, sig));
 }
 
-// A table law's product rule against the cuts at every sample, for one law and spot: the
-// largest difference of any channel over the centres, relative to A0, each one beyond 1e-12 a
-// failure naming the case. Product, Cuts: integrators of (cx, cy) with uses_product_rule().
+// A table law's product rule against the cuts at every sample, for one law (case k) and spot of
+// aspect q: the largest difference of any channel over the centres, relative to A0, each one
+// beyond 1e-12 a failure naming the case. Product, Cuts: integrators of (cx, cy) with
+// uses_product_rule().
 struct SampledCase {
   int samples;
   double gamma;
@@ -88,7 +89,9 @@ inline const std::vector<SampledCase>& sampled_cases() {
 template <typename Product, typename Cuts>
 double product_rule_difference(const Product& product, const Cuts& cuts,
                                const std::vector<std::array<double, 2>>& centres, double A0,
-                               const std::string& what) {
+                               const SampledCase& k, double q) {
+  const std::string what = std::to_string(k.samples) + " samples, gamma " +
+                           std::to_string(k.gamma) + ", q " + std::to_string(q);
   EXPECT_TRUE(product.uses_product_rule()) << what;
   EXPECT_FALSE(cuts.uses_product_rule()) << what;
   double worst = 0.0;

@@ -50,7 +50,12 @@ class RectStripIntegrator {
   RectStripIntegrator(const PressureLaw<double>& law, double q, bool by_samples = false)
       : law_(law), q_(q) {
     for (double b : law_.breakpoints())
-      if (b > 0.0 && b < 1.0) breaks_.push_back(b);
+      if (b > 0.0 && b < 1.0) {
+        breaks_.push_back(b);
+        signed_breaks_.push_back(b);
+        signed_breaks_.push_back(-b);
+      }
+    std::sort(signed_breaks_.begin(), signed_breaks_.end());
     const double gamma = law_rim_exponent(law_);
     fractional_ = gamma != std::floor(gamma);
     product_ = law.kind == PressureKind::Table && law.table && !by_samples &&
@@ -59,11 +64,6 @@ class RectStripIntegrator {
       gamma_ = law.table->gamma();
       for (const PressureTable::Cubic& g : law.table->cubics())
         g_pieces_.push_back({g.a, g.b, {g.c[0], g.c[1], g.c[2], g.c[3], 0.0}});
-      for (double b : breaks_) {
-        signed_breaks_.push_back(b);
-        signed_breaks_.push_back(-b);
-      }
-      std::sort(signed_breaks_.begin(), signed_breaks_.end());
       // The moments of every dyadic part of [0, 1] for every number of points; a part of
       // [-1, 0] mirrors one of them (T_j(-x) = (-1)^j T_j(x)).
       for (int level = 0; level <= kMaxLevel; ++level)
@@ -85,11 +85,8 @@ class RectStripIntegrator {
     const Frame f = frame(cx, cy);
     double acc[12] = {};
     if (!product_) {
-      std::vector<double> cuts = {-1.0, 0.0, 1.0};
-      for (double b : breaks_) {
-        cuts.push_back(b);
-        cuts.push_back(-b);
-      }
+      std::vector<double> cuts = signed_breaks_;
+      cuts.insert(cuts.end(), {-1.0, 0.0, 1.0});
       if (cx > -1.0 && cx < 1.0) cuts.push_back(cx);
       std::sort(cuts.begin(), cuts.end());
       cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());

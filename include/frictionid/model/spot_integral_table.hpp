@@ -212,8 +212,7 @@ class SpotIntegralTable {
                                            q_, stop, parallel, (1.0 - B * B) / (1.0 + B * B),
                                            max_points));
       inner_ = B;
-      for (int j = 0; j < kChannels; ++j)
-        inner_weight_[j] = std::pow(B, 2 + SpotIntegrals::kChannelDegree[j]);
+      inner_weight_ = SpotIntegrals::scale_weights(B);
       stats_ = uniform_->stats();
       stats_.layer_points = stats_.points;
       return;

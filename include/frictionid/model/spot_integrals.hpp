@@ -56,6 +56,12 @@ struct SpotIntegrals {
   // one more): the uniform ellipse scaled by s carries s^(2 + degree) times the unit one's
   // integrals at c/s (docs/physics.md (9.8)).
   static constexpr int kChannelDegree[12] = {0, 1, 1, 0, 1, 1, 1, 2, 2, 1, 2, 2};
+  // s^(2 + degree) per channel.
+  static std::array<double, 12> scale_weights(double s) {
+    std::array<double, 12> w{};
+    for (std::size_t j = 0; j < 12; ++j) w[j] = std::pow(s, 2 + kChannelDegree[j]);
+    return w;
+  }
 
   // From twelve channels in the order of integrals_from_channels.
   static SpotIntegrals from_channels(const double* v) {

@@ -71,8 +71,7 @@ class SpotPointIntegrator {
       // The uniform ellipse's rays are closed forms; the annulus' own would cut at the step.
       rays_.emplace(spot, PressureLaw<double>::uniform(), q, rules);
       inner_ = law.inner_radius();
-      for (std::size_t j = 0; j < 12; ++j)
-        inner_weight_[j] = std::pow(inner_, 2 + SpotIntegrals::kChannelDegree[j]);
+      inner_weight_ = SpotIntegrals::scale_weights(inner_);
       moments_ = spot_moments(spot, law_moments(law), q);
       far_ = kFar * std::max(1.0, q);
     } else {
