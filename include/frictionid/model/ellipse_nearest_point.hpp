@@ -3,8 +3,8 @@
 // In the frame where the semi-axes are e0 >= e1 and the point (y0, y1) lies in the first
 // quadrant, the nearest point is (e0^2 y0/(t + e0^2), e1^2 y1/(t + e1^2)) for the root t of
 // (e0 y0/(t + e0^2))^2 + (e1 y1/(t + e1^2))^2 = 1, which is monotone in t on the bracket used
-// here, so bisection finds it to the last bit. Plain double: the integrators use it to place
-// their cuts, not inside any derivative.
+// here, so Newton's method guarded by bisection finds it to the last bit. Plain double: the
+// integrators use it to place their cuts, not inside any derivative.
 #pragma once
 
 #include <cmath>
@@ -39,18 +39,31 @@ inline RimPoint nearest_rim_point(double q, double x, double y) {
         p.distance = 0.0;
       } else {
         const double r0 = (e0 / e1) * (e0 / e1), n0 = r0 * z0;
-        double lo = z1 - 1.0, hi = g < 0.0 ? 0.0 : std::hypot(n0, z1) - 1.0, t = 0.0;
-        for (int i = 0; i < 200; ++i) {
-          t = 0.5 * (lo + hi);
-          if (t == lo || t == hi) break;
-          const double a = n0 / (t + r0), b = z1 / (t + 1.0), f = a * a + b * b - 1.0;
-          if (f > 0.0)
-            lo = t;
-          else if (f < 0.0)
+        double lo = z1 - 1.0, hi = g < 0.0 ? 0.0 : std::hypot(n0, z1) - 1.0, t = lo;
+        // f is convex and decreasing for t > -1 and f(lo) >= 0, so Newton from lo rises to the
+        // root without passing it; a step that gains less than half the bracket is followed by
+        // a bisection. 5-10 evaluations where bisection to the last bit took ~60.
+        for (int i = 0; i < 200 && lo < hi; ++i) {
+          const double u = 1.0 / (t + r0), v = 1.0 / (t + 1.0);
+          const double a = n0 * u, b = z1 * v, f = a * a + b * b - 1.0;
+          if (f < 0.0) {
             hi = t;
-          else
-            break;
+          } else {
+            lo = t;
+            if (f == 0.0) break;
+            const double newton = t + f / (2.0 * (a * a * u + b * b * v));
+            if (!(newton > t)) break;  // converged to the last bit
+            if (newton < hi && newton - lo >= 0.5 * (hi - lo)) {
+              t = newton;
+              continue;
+            }
+            if (newton < hi) lo = newton;
+          }
+          const double mid = 0.5 * (lo + hi);
+          if (mid == lo || mid == hi) break;
+          t = mid;
         }
+        t = lo;
         x0 = r0 * y0 / (t + r0);
         x1 = y1 / (t + 1.0);
         p.distance = std::hypot(x0 - y0, x1 - y1);

@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <utility>
 #include <vector>
 
 #include <frictionid/model/gauss_legendre_rule.hpp>
@@ -38,37 +40,65 @@ inline int product_points(double rho, double log_tolerance, int degrees) {
 }
 
 // The moments mu_j, j < n, over [s0, s1] of the weight the pieces (sorted, disjoint) make, each a
-// polynomial of at most `degree`: Gauss–Legendre on each piece within, exact for w T_j.
+// polynomial of at most `degree`: Gauss–Legendre on each piece within, exact for w T_j. The
+// recurrence for T_j runs over all of a piece's points at once (independent chains, where one
+// point at a time waits on each step).
 inline void chebyshev_moments(const std::vector<PolynomialPiece>& pieces, double s0, double s1,
                               int n, int degree, double* mu) {
   std::fill(mu, mu + n, 0.0);
   const std::vector<QuadratureNode>& rule = gauss_legendre_rule((n + degree + 1) / 2);
+  const std::size_t m = rule.size();
+  double x[kMostProductPoints], w[kMostProductPoints], t0[kMostProductPoints],
+      t1[kMostProductPoints];
   const double mid = 0.5 * (s0 + s1), inv_half = 2.0 / (s1 - s0);
   auto k = std::upper_bound(pieces.begin(), pieces.end(), s0,
                             [](double s, const PolynomialPiece& p) { return s < p.b; });
   for (; k != pieces.end() && k->a < s1; ++k) {
     const double lo = std::max(k->a, s0), hi = std::min(k->b, s1), len = hi - lo;
     if (!(len > 0.0)) continue;
-    for (const QuadratureNode& g : rule) {
-      const double s = lo + len * g.from_left, w = g.weight * len * (*k)(s);
-      const double x = (s - mid) * inv_half;
-      double t0 = 1.0, t1 = x;
-      mu[0] += w;
-      mu[1] += w * x;
-      for (int j = 2; j < n; ++j) {
-        const double t2 = 2.0 * x * t1 - t0;
-        mu[j] += w * t2;
-        t0 = t1;
-        t1 = t2;
+    // The nodes placed in x: s rounded to its own magnitude would move them by ~1e-16 s/half.
+    const double x_lo = (lo - mid) * inv_half, x_len = (hi - mid) * inv_half - x_lo;
+    double m0 = 0.0, m1 = 0.0;
+    for (std::size_t i = 0; i < m; ++i) {
+      x[i] = x_lo + x_len * rule[i].from_left;
+      w[i] = rule[i].weight * len * (*k)(mid + 0.5 * (s1 - s0) * x[i]);
+      t0[i] = 1.0;
+      t1[i] = x[i];
+      m0 += w[i];
+      m1 += w[i] * x[i];
+    }
+    mu[0] += m0;
+    mu[1] += m1;
+    for (int j = 2; j < n; ++j) {
+      double sum[2] = {0.0, 0.0};  // two chains of additions
+      for (std::size_t i = 0; i < m; ++i) {
+        const double t2 = 2.0 * x[i] * t1[i] - t0[i];
+        sum[i % 2] += w[i] * t2;
+        t0[i] = t1[i];
+        t1[i] = t2;
       }
+      mu[j] += sum[0] + sum[1];
     }
   }
 }
 
+// The Chebyshev points cos(pi (2i + 1)/(2n)), i < n, for n up to kMostProductPoints.
+inline const double* chebyshev_points(int n) {
+  static const std::vector<std::vector<double>> points = [] {
+    std::vector<std::vector<double>> all(kMostProductPoints + 1);
+    for (int k = 1; k <= kMostProductPoints; ++k)
+      for (int i = 0; i < k; ++i)
+        all[static_cast<std::size_t>(k)].push_back(std::cos(M_PI * (2 * i + 1) / (2.0 * k)));
+    return all;
+  }();
+  return points[static_cast<std::size_t>(n)].data();
+}
+
 // The points x_i in [-1, 1] and their weights W_i from the moments (above), i < n.
 inline void product_weights(const double* mu, int n, double* x, double* W) {
+  const double* points = chebyshev_points(n);
   for (int i = 0; i < n; ++i) {
-    x[i] = std::cos(M_PI * (2 * i + 1) / (2.0 * n));
+    x[i] = points[i];
     double t0 = 1.0, t1 = x[i], sum = 0.5 * mu[0] + mu[1] * x[i];
     for (int j = 2; j < n; ++j) {
       const double t2 = 2.0 * x[i] * t1 - t0;
@@ -79,5 +109,71 @@ inline void product_weights(const double* mu, int n, double* x, double* W) {
     W[i] = 2.0 / n * sum;
   }
 }
+
+// The product rule on the dyadic parts of one interval [lo, hi] (part k of level L: [lo + (hi -
+// lo) k/2^L, lo + (hi - lo)(k + 1)/2^L]) for one weight. A part's weights W_i depend only on
+// the part, the weight and n, not on F, so they are computed once, for every part of the first
+// kLevels levels and every n in kPoints (~0.4 MB; ~10 ms for a table of 201 samples), and read
+// at every point, where the moments alone took a third of a table law's build. A deeper part's
+// weights are computed when asked for.
+class DyadicProductRule {
+ public:
+  static constexpr int kLevels = 8;
+  static constexpr std::array<int, 11> kPoints = {8, 10, 12, 14, 16, 20, 24, 28, 32, 40, 48};
+
+  DyadicProductRule() = default;
+  // The weight: `pieces` (sorted, disjoint), each a polynomial of at most `degree`.
+  DyadicProductRule(std::vector<PolynomialPiece> pieces, double lo, double hi, int degree)
+      : pieces_(std::move(pieces)), lo_(lo), hi_(hi), degree_(degree) {
+    for (int level = 0; level < kLevels; ++level)
+      for (int k = 0; k < (1 << level); ++k)
+        for (int n : kPoints) {
+          double mu[kMostProductPoints], x[kMostProductPoints], W[kMostProductPoints];
+          chebyshev_moments(pieces_, part_lo(level, k), part_hi(level, k), n, degree_, mu);
+          product_weights(mu, n, x, W);
+          weights_.insert(weights_.end(), W, W + n);
+        }
+  }
+
+  // The least n of kPoints >= want (or the most).
+  static int points(int want) {
+    for (int n : kPoints)
+      if (n >= want) return n;
+    return kPoints.back();
+  }
+
+  double part_lo(int level, long k) const {
+    return k == 0 ? lo_ : lo_ + (hi_ - lo_) * std::ldexp(static_cast<double>(k), -level);
+  }
+  double part_hi(int level, long k) const {
+    const double at = std::ldexp(static_cast<double>(k + 1), -level);
+    return at == 1.0 ? hi_ : lo_ + (hi_ - lo_) * at;
+  }
+
+  // The n weights (n from kPoints) of part k of `level`, for the points chebyshev_points(n)
+  // mapped onto the part; `scratch` (kMostProductPoints long) holds those of a deeper part.
+  const double* weights(int level, long k, int n, double* scratch) const {
+    if (level >= kLevels || weights_.empty()) {
+      double mu[kMostProductPoints], x[kMostProductPoints];
+      chebyshev_moments(pieces_, part_lo(level, k), part_hi(level, k), n, degree_, mu);
+      product_weights(mu, n, x, scratch);
+      return scratch;
+    }
+    std::size_t at =
+        ((static_cast<std::size_t>(1) << level) - 1 + static_cast<std::size_t>(k)) * kPointsSum;
+    for (int p : kPoints) {
+      if (p == n) break;
+      at += static_cast<std::size_t>(p);
+    }
+    return weights_.data() + at;
+  }
+
+ private:
+  static constexpr std::size_t kPointsSum = 252;  // the sum of kPoints
+  std::vector<PolynomialPiece> pieces_;
+  double lo_ = 0.0, hi_ = 1.0;
+  int degree_ = 0;
+  std::vector<double> weights_;  // part k of level L at (2^L - 1 + k) kPointsSum, n by n
+};
 
 }  // namespace frictionid::model

@@ -18,9 +18,9 @@
 // the y-integrals, is analytic across them. The halves of the x-range are split into dyadic
 // parts [k, k + 1]/2^L, halved towards c_x and (gamma fractional) the rim until their
 // singularities keep 2 half-lengths away; each takes that factor at Chebyshev points and
-// integrates it against g exactly (product_rule.hpp), with the moments of g, which depend only
-// on the part and the number of points, computed once per law (0.5 MB; 10 ms for 201 samples,
-// 44 ms for 1001). Parts of level 7 (1/128 long) next to c_x or the rim stay cut at the samples
+// integrates it against g exactly (product_rule.hpp), with weights that depend only on the part
+// and the number of points, computed once per law (0.5 MB; 10 ms for 201 samples, 44 ms for
+// 1001). Parts of level 7 (1/128 long) next to c_x or the rim stay cut at the samples
 // within, and at c_x.
 #pragma once
 
@@ -28,6 +28,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include <frictionid/model/gauss_legendre_rule.hpp>
@@ -62,19 +63,11 @@ class RectStripIntegrator {
                breaks_.size() >= kProductSamples;
     if (product_) {
       gamma_ = law.table->gamma();
+      std::vector<PolynomialPiece> g_pieces;  // g on [0, 1]
       for (const PressureTable::Cubic& g : law.table->cubics())
-        g_pieces_.push_back({g.a, g.b, {g.c[0], g.c[1], g.c[2], g.c[3], 0.0}});
-      // The moments of every dyadic part of [0, 1] for every number of points; a part of
-      // [-1, 0] mirrors one of them (T_j(-x) = (-1)^j T_j(x)).
-      for (int level = 0; level <= kMaxLevel; ++level)
-        for (int k = 0; k < (1 << level); ++k) {
-          const double lo = std::ldexp(k, -level), hi = std::ldexp(k + 1, -level);
-          for (int n : kPoints) {
-            std::vector<double> mu(static_cast<std::size_t>(n));
-            chebyshev_moments(g_pieces_, lo, hi, n, 3, mu.data());
-            moments_.insert(moments_.end(), mu.begin(), mu.end());
-          }
-        }
+        g_pieces.push_back({g.a, g.b, {g.c[0], g.c[1], g.c[2], g.c[3], 0.0}});
+      // The weights of every dyadic part of [0, 1]; a part of [-1, 0] mirrors one of them.
+      rule_ = DyadicProductRule(std::move(g_pieces), 0.0, 1.0, 3);
     }
   }
 
@@ -104,8 +97,8 @@ class RectStripIntegrator {
   static constexpr int kMost = 24;                           // beyond: the fine rule
   static constexpr std::size_t kProductSamples = 64;         // fewer: cut at them (as cheap)
   static constexpr double kProductRho = 3.7320508075688772;  // singularities 2 half-lengths away
-  static constexpr int kMaxLevel = 7;  // a part 1/128 long next to c_x or the rim: cut
-  static constexpr std::array<int, 11> kPoints = {8, 10, 12, 14, 16, 20, 24, 28, 32, 40, 48};
+  // A part 1/128 long next to c_x or the rim: cut (its weights are the last level stored).
+  static constexpr int kMaxLevel = DyadicProductRule::kLevels - 1;
 
   // One centre's y-integrals: its edges' offsets, and far away the rule across the strip.
   struct Frame {
@@ -185,28 +178,17 @@ class RectStripIntegrator {
   // The product rule on a dyadic part: (1 - x^2)^gamma times the strips at Chebyshev points,
   // against g(|x|), with the moments of the part's mirror image in [0, 1] for x < 0.
   void product(const Frame& f, int level, int k, double side, double rho, double* acc) const {
-    const int want = product_points(rho, kLog, 3);  // x^2 and a margin
-    std::size_t at = (static_cast<std::size_t>(1) << level) - 1 + static_cast<std::size_t>(k);
-    at *= kPointsSum;
-    int n = kPoints.back();
-    for (int p : kPoints) {
-      if (p >= want) {
-        n = p;
-        break;
-      }
-      at += static_cast<std::size_t>(p);
-    }
-    double mu[kMostProductPoints], x[kMostProductPoints], W[kMostProductPoints];
-    for (int j = 0; j < n; ++j)
-      mu[j] = side > 0.0 || j % 2 == 0 ? moments_[at + static_cast<std::size_t>(j)]
-                                       : -moments_[at + static_cast<std::size_t>(j)];
-    product_weights(mu, n, x, W);
+    const int n = DyadicProductRule::points(product_points(rho, kLog, 3));  // x^2 and a margin
+    double scratch[kMostProductPoints];
+    const double* W = rule_.weights(level, k, n, scratch);
+    const double* x = chebyshev_points(n);
     const double a = std::ldexp(k, -level), b = std::ldexp(k + 1, -level);
     const double mid = side * 0.5 * (a + b), half = 0.5 * (b - a);
     for (int i = 0; i < n; ++i) {
       const double xi = mid + half * x[i];
       const double rim = gamma_ > 0.0 ? std::pow((1.0 - xi) * (1.0 + xi), gamma_) : 1.0;
-      strip(f, xi, xi - f.cx, W[i] * rim, acc);
+      // (The mirror image's weight at x_i is the part's at -x_i = x_(n - 1 - i).)
+      strip(f, xi, xi - f.cx, (side > 0.0 ? W[i] : W[n - 1 - i]) * rim, acc);
     }
   }
 
@@ -276,14 +258,10 @@ class RectStripIntegrator {
   double q_;
   bool fractional_ = false;  // sigma0 ~ (1 - x^2)^gamma with gamma fractional: branch points at +-1
   std::vector<double> breaks_;
-  bool product_ = false;                   // a table law by the product rule
-  double gamma_ = 0.0;                     // its rim exponent
-  std::vector<PolynomialPiece> g_pieces_;  // g on [0, 1]
-  std::vector<double> signed_breaks_;      // +-breaks_, ascending
-  // The moments of the dyadic part k/2^L of [0, 1], at (2^L - 1 + k) kPointsSum: for each of
-  // kPoints in turn, that many.
-  static constexpr std::size_t kPointsSum = 252;
-  std::vector<double> moments_;
+  bool product_ = false;               // a table law by the product rule
+  double gamma_ = 0.0;                 // its rim exponent
+  std::vector<double> signed_breaks_;  // +-breaks_, ascending
+  DyadicProductRule rule_;             // a table law's weights on the dyadic parts of [0, 1]
 };
 
 }  // namespace frictionid::model

@@ -809,9 +809,12 @@ class SpotIntegrator {
   SpotIntegrals rim_integrals(double cx, double cy) const {
     SpotIntegrals out;
     auto add = [&](double w, double x, double y) {
-      const double dx = x - cx, dy = y - cy, len = std::hypot(dx, dy);
+      // (hypot, which guards against overflow that only |c| > 1e145 can cause, took a third of
+      // the time.)
+      const double dx = x - cx, dy = y - cy, r2 = dx * dx + dy * dy;
+      const double len = r2 > 1e-290 && r2 < 1e290 ? std::sqrt(r2) : std::hypot(dx, dy);
       if (!(len > 0.0)) return;
-      const double ex = -dy / len, ey = dx / len, W = w * q_;
+      const double inv = 1.0 / len, ex = -dy * inv, ey = dx * inv, W = w * q_;
       const double wt[3] = {1.0, x, y};
       for (int k = 0; k < 3; ++k) {
         out.ex[k] += W * wt[k] * ex;
@@ -845,12 +848,17 @@ class SpotIntegrator {
     const double t0 = std::atan2(std::fabs(p.y) / q_, std::fabs(p.x));  // in [0, pi/2]
     std::vector<double> cuts = {-M_PI + t0, -t0, t0, M_PI - t0, M_PI + t0};
     cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    // Each piece in tau = tan((t - m)/2) about its middle m, |tau| <= tan(len/4) <= 1: cos t and
+    // sin t are the rational (1 - tau^2, 2 tau)/(1 + tau^2) turned by m and dt = 2 dtau/(1 +
+    // tau^2), analytic on the piece, where sincos at every node took a quarter of the time.
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       const double a = cuts[k], len = cuts[k + 1] - a;
       if (!(len > 0.0)) continue;
+      const double m = a + 0.5 * len, T = std::tan(0.25 * len), cm = std::cos(m), sm = std::sin(m);
       for (const auto& node : rule) {
-        const double t = a + len * node.from_left;
-        add(node.weight * len, std::cos(t), q_ * std::sin(t));
+        const double tau = T * (node.from_left - node.from_right), d = 1.0 / (1.0 + tau * tau);
+        const double c = (1.0 - tau * tau) * d, s = 2.0 * tau * d;
+        add(node.weight * 4.0 * T * d, cm * c - sm * s, q_ * (sm * c + cm * s));
       }
     }
     return out;
