@@ -94,7 +94,8 @@ class EllipseLawIntegrator {
       gamma_ = law.table->gamma();
       for (const PressureTable::Cubic& g : law.table->cubics())
         slope_pieces_.push_back(slope_piece(g));
-      rule_ = DyadicProductRule(slope_pieces_, cuts_[0], cuts_[1], 4);
+      rule_ = DyadicProductRule(slope_pieces_, cuts_[0], cuts_[1], 4,
+                                gamma_ > 0.0 ? gamma_ - 1.0 : 0.0);
     }
     density_ = law.kind == PressureKind::Hertz || law.kind == PressureKind::Parabolic ||
                law.kind == PressureKind::Table ||
@@ -301,19 +302,19 @@ class EllipseLawIntegrator {
   void product_rule(const Centre& c, const Piece& p, int depth, double w0, double s0, double s1,
                     double z, double* acc) const {
     const int want = product_points(bernstein_parameter(z), kLogProduct, 4);  // s^(2+d): four
-    double W_own[kMostProductPoints];
-    const double* W = W_own;
-    int n = want;
-    if (p.dyadic) {
-      n = DyadicProductRule::points(want);
-      W = rule_.weights(depth, static_cast<long>(std::ldexp(w0, depth)), n, W_own);
-    } else {
-      double mu[kMostProductPoints], x[kMostProductPoints];
-      chebyshev_moments(slope_pieces_, s0, s1, n, 4, mu);
-      product_weights(mu, n, x, W_own);
-    }
-    const double* x = chebyshev_points(n);
     const double mid = 0.5 * (s0 + s1), half = 0.5 * (s1 - s0);
+    if (p.dyadic) {  // the weights carry the rim's (1 - s^2)^(gamma - 1)
+      const int n = DyadicProductRule::points(want);
+      double scratch[kMostProductPoints];
+      const double* W = rule_.weights(depth, static_cast<long>(std::ldexp(w0, depth)), n, scratch);
+      const double* x = chebyshev_points(n);
+      for (int i = 0; i < n; ++i) layer(*c.ray, mid + half * x[i], W[i], acc);
+      return;
+    }
+    const int n = want;
+    double mu[kMostProductPoints], x[kMostProductPoints], W[kMostProductPoints];
+    chebyshev_moments(slope_pieces_, s0, s1, n, 4, mu);
+    product_weights(mu, n, x, W);
     for (int i = 0; i < n; ++i) {
       const double s = mid + half * x[i];
       const double rim = gamma_ > 0.0 ? std::pow((1.0 - s) * (1.0 + s), gamma_ - 1.0) : 1.0;

@@ -113,24 +113,27 @@ inline void product_weights(const double* mu, int n, double* x, double* W) {
 // The product rule on the dyadic parts of one interval [lo, hi] (part k of level L: [lo + (hi -
 // lo) k/2^L, lo + (hi - lo)(k + 1)/2^L]) for one weight. A part's weights W_i depend only on
 // the part, the weight and n, not on F, so they are computed once, for every part of the first
-// kLevels levels and every n in kPoints (~0.4 MB; ~10 ms for a table of 201 samples), and read
+// kLevels levels and every n in kPoints (~0.5 MB; ~10 ms for a table of 201 samples), and read
 // at every point, where the moments alone took a third of a table law's build. A deeper part's
-// weights are computed when asked for.
+// weights are computed when asked for. A factor (1 - s^2)^e of the integrand, which the weight
+// leaves out because it is singular at s = 1 (a table's rim, physics.md §9.3), is the same at a
+// part's points for every F: the weights carry it (pow at every point took a fifth of a build).
 class DyadicProductRule {
  public:
   static constexpr int kLevels = 8;
   static constexpr std::array<int, 11> kPoints = {8, 10, 12, 14, 16, 20, 24, 28, 32, 40, 48};
 
   DyadicProductRule() = default;
-  // The weight: `pieces` (sorted, disjoint), each a polynomial of at most `degree`.
-  DyadicProductRule(std::vector<PolynomialPiece> pieces, double lo, double hi, int degree)
-      : pieces_(std::move(pieces)), lo_(lo), hi_(hi), degree_(degree) {
+  // The weight: `pieces` (sorted, disjoint), each a polynomial of at most `degree`, and the
+  // factor (1 - s^2)^rim (none for rim = 0; 0 <= lo < hi <= 1 otherwise).
+  DyadicProductRule(std::vector<PolynomialPiece> pieces, double lo, double hi, int degree,
+                    double rim = 0.0)
+      : pieces_(std::move(pieces)), lo_(lo), hi_(hi), degree_(degree), rim_(rim) {
     for (int level = 0; level < kLevels; ++level)
       for (int k = 0; k < (1 << level); ++k)
         for (int n : kPoints) {
-          double mu[kMostProductPoints], x[kMostProductPoints], W[kMostProductPoints];
-          chebyshev_moments(pieces_, part_lo(level, k), part_hi(level, k), n, degree_, mu);
-          product_weights(mu, n, x, W);
+          double W[kMostProductPoints];
+          compute(level, k, n, W);
           weights_.insert(weights_.end(), W, W + n);
         }
   }
@@ -151,12 +154,11 @@ class DyadicProductRule {
   }
 
   // The n weights (n from kPoints) of part k of `level`, for the points chebyshev_points(n)
-  // mapped onto the part; `scratch` (kMostProductPoints long) holds those of a deeper part.
+  // mapped onto the part, the factor included; `scratch` (kMostProductPoints long) holds those
+  // of a deeper part.
   const double* weights(int level, long k, int n, double* scratch) const {
     if (level >= kLevels || weights_.empty()) {
-      double mu[kMostProductPoints], x[kMostProductPoints];
-      chebyshev_moments(pieces_, part_lo(level, k), part_hi(level, k), n, degree_, mu);
-      product_weights(mu, n, x, scratch);
+      compute(level, k, n, scratch);
       return scratch;
     }
     std::size_t at =
@@ -169,10 +171,23 @@ class DyadicProductRule {
   }
 
  private:
+  void compute(int level, long k, int n, double* W) const {
+    const double s0 = part_lo(level, k), s1 = part_hi(level, k);
+    double mu[kMostProductPoints], x[kMostProductPoints];
+    chebyshev_moments(pieces_, s0, s1, n, degree_, mu);
+    product_weights(mu, n, x, W);
+    if (rim_ != 0.0)
+      for (int i = 0; i < n; ++i) {
+        const double s = 0.5 * (s0 + s1) + 0.5 * (s1 - s0) * x[i];
+        W[i] *= std::pow((1.0 - s) * (1.0 + s), rim_);
+      }
+  }
+
   static constexpr std::size_t kPointsSum = 252;  // the sum of kPoints
   std::vector<PolynomialPiece> pieces_;
   double lo_ = 0.0, hi_ = 1.0;
   int degree_ = 0;
+  double rim_ = 0.0;
   std::vector<double> weights_;  // part k of level L at (2^L - 1 + k) kPointsSum, n by n
 };
 

@@ -66,8 +66,9 @@ class RectStripIntegrator {
       std::vector<PolynomialPiece> g_pieces;  // g on [0, 1]
       for (const PressureTable::Cubic& g : law.table->cubics())
         g_pieces.push_back({g.a, g.b, {g.c[0], g.c[1], g.c[2], g.c[3], 0.0}});
-      // The weights of every dyadic part of [0, 1]; a part of [-1, 0] mirrors one of them.
-      rule_ = DyadicProductRule(std::move(g_pieces), 0.0, 1.0, 3);
+      // The weights of every dyadic part of [0, 1], with the rim's (1 - x^2)^gamma; a part of
+      // [-1, 0] mirrors one of them.
+      rule_ = DyadicProductRule(std::move(g_pieces), 0.0, 1.0, 3, gamma_);
     }
   }
 
@@ -186,9 +187,8 @@ class RectStripIntegrator {
     const double mid = side * 0.5 * (a + b), half = 0.5 * (b - a);
     for (int i = 0; i < n; ++i) {
       const double xi = mid + half * x[i];
-      const double rim = gamma_ > 0.0 ? std::pow((1.0 - xi) * (1.0 + xi), gamma_) : 1.0;
       // (The mirror image's weight at x_i is the part's at -x_i = x_(n - 1 - i).)
-      strip(f, xi, xi - f.cx, (side > 0.0 ? W[i] : W[n - 1 - i]) * rim, acc);
+      strip(f, xi, xi - f.cx, side > 0.0 ? W[i] : W[n - 1 - i], acc);
     }
   }
 
