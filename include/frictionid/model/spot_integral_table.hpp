@@ -59,14 +59,15 @@
 //
 // The points. Ellipse: SpotIntegrator, whose rays are closed forms under the power laws (uniform,
 // Hertz, parabolic, power:n: 6-20 us a point); under a table law, layers of the uniform ellipse
-// (ellipse_law_integrator.hpp) from that ellipse's own table, built first (0.09-0.14 ms a point,
-// any number of samples: from 64 a product rule whose readings do not grow with them; the table
-// then takes 9,000-30,000 points, every sample a line its cells resolve). An annulus has no points
-// of its own: it is the uniform ellipse less the one scaled by its inner radius, two readings of
-// the uniform table (built to a tolerance tightened by (1 - B^2)/(1 + B^2), the annulus' load over
-// what the two carry). Rectangle: RectStripIntegrator (rect_strip_integrator.hpp), the y-integral
-// in closed form: 10-30 us a point (a table law of 201-1001 samples: 20-65 us by the product rule),
-// and exact next to the corners, where SpotIntegrator's default angular rule errs by up to 5e-9 A0.
+// (ellipse_law_integrator.hpp) from that ellipse's own table, built first (70-100 us a point for 41
+// samples; from 64 a product rule whose readings do not grow with them, 45-155 us for 201-1001; the
+// table then takes 9,000-30,000 points, every sample a line its cells resolve). An annulus has no
+// points of its own: it is the uniform ellipse less the one scaled by its inner radius, two
+// readings of the uniform table (built to a tolerance tightened by (1 - B^2)/(1 + B^2), the
+// annulus' load over what the two carry). Rectangle: RectStripIntegrator
+// (rect_strip_integrator.hpp), the y-integral in closed form: 10-30 us a point (a table law of
+// 201-1001 samples: 12-42 us by the product rule), and exact next to the corners, where
+// SpotIntegrator's default angular rule errs by up to 5e-9 A0.
 //
 // Accuracy: within 3e-11 A0 of the integrals (|ex|, |ey| <= A0) over the whole plane for the
 // uniform, Hertz, parabolic and annulus laws and q from 0.4 to 2.5, measured at 4,000 random
