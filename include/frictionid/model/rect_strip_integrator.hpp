@@ -121,9 +121,10 @@ class RectStripIntegrator {
             far ? &gauss_legendre_rule(points_for(gap, 2.0 * q, 3)) : nullptr};
   }
 
-  // The x-range cut at `cuts`, each piece by Gauss–Legendre or, ending at c_x or the rim, the
-  // fine rule.
-  void by_cuts(const Frame& f, const std::vector<double>& cuts, double* acc) const {
+  // The x-range cut at `cuts`, each piece by Gauss–Legendre or, ending at c_x or the rim,
+  // end_rule (tanh-sinh).
+  void by_cuts(const Frame& f, const std::vector<double>& cuts, double* acc,
+               const std::vector<QuadratureNode>& end_rule = fine_rule()) const {
     const double cx = f.cx;
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       const double lo = cuts[k], hi = cuts[k + 1], len = hi - lo;
@@ -131,7 +132,7 @@ class RectStripIntegrator {
       double distance = std::hypot(std::max({0.0, lo - cx, cx - hi}), f.gap_y);
       if (fractional_) distance = std::min(distance, 1.0 - std::max(std::fabs(lo), std::fabs(hi)));
       const int n = ends ? 0 : points_for(distance, len);
-      for (const QuadratureNode& node : n > 0 ? gauss_legendre_rule(n) : fine_rule()) {
+      for (const QuadratureNode& node : n > 0 ? gauss_legendre_rule(n) : end_rule) {
         const double x = lo + len * node.from_left;
         // a = x - c_x and 1 - |x| to full precision next to the cut and the rim.
         const double a = lo == cx   ? len * node.from_left
@@ -169,7 +170,10 @@ class RectStripIntegrator {
       cuts.push_back(hi);
       std::sort(cuts.begin(), cuts.end());
       cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
-      by_cuts(f, cuts, acc);
+      // A part this short carries little: the radial rule (51 nodes where the fine rule's 105
+      // took two fifths of a table's build) is within 1e-14 A0 of it here, where over the whole
+      // x-range (the cuts without the product rule, which keep the fine rule) it differs by 1e-11.
+      by_cuts(f, cuts, acc, radial_rule());
       return;
     }
     part(f, level + 1, 2 * k, side, acc);
