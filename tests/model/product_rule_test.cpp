@@ -81,3 +81,30 @@ TEST(DyadicProductRule, IntegratesEveryPolynomialBelowItsPointsAgainstThePiecewi
       EXPECT_NEAR(got, want, 1e-13 * scale) << "level " << level << ", " << n << " points";
     }
 }
+
+TEST(DyadicProductRule, RulesOfTheSameWeightShareTheirStoredWeights) {
+  // A fit makes an integrator, hence a rule, for every model it evaluates: the weights (16 ms
+  // for 201 samples) are computed once per weight.
+  std::mt19937_64 g(11);
+  const std::vector<fm::PolynomialPiece> pieces = random_pieces(201, g);
+  const fm::DyadicProductRule a(pieces, 0.0, 1.0, 4, -0.5), b(pieces, 0.0, 1.0, 4, -0.5);
+  double sa[fm::kMostProductPoints], sb[fm::kMostProductPoints];
+  EXPECT_EQ(a.weights(5, 7, 24, sa), b.weights(5, 7, 24, sb));
+  // Another weight, or the same one with another rim factor, has weights of its own.
+  std::vector<fm::PolynomialPiece> other = pieces;
+  other[100].c[2] += 1e-3;
+  const fm::DyadicProductRule c(other, 0.0, 1.0, 4, -0.5), d(pieces, 0.0, 1.0, 4, 0.5);
+  double sc[fm::kMostProductPoints], sd[fm::kMostProductPoints];
+  const double* wa = a.weights(0, 0, 24, sa);
+  const double* wc = c.weights(0, 0, 24, sc);
+  const double* wd = d.weights(0, 0, 24, sd);
+  EXPECT_NE(wa, wc);
+  EXPECT_NE(wa, wd);
+  double differ_c = 0.0, differ_d = 0.0;
+  for (int i = 0; i < 24; ++i) {
+    differ_c = std::max(differ_c, std::fabs(wa[i] - wc[i]));
+    differ_d = std::max(differ_d, std::fabs(wa[i] - wd[i]));
+  }
+  EXPECT_GT(differ_c, 0.0);
+  EXPECT_GT(differ_d, 0.0);
+}

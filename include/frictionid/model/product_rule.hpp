@@ -12,6 +12,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <memory>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -113,9 +115,10 @@ inline void product_weights(const double* mu, int n, double* x, double* W) {
 // The product rule on the dyadic parts of one interval [lo, hi] (part k of level L: [lo + (hi -
 // lo) k/2^L, lo + (hi - lo)(k + 1)/2^L]) for one weight. A part's weights W_i depend only on
 // the part, the weight and n, not on F, so they are computed once, for every part of the first
-// kLevels levels and every n in kPoints (~0.5 MB; ~10 ms for a table of 201 samples), and read
+// kLevels levels and every n in kPoints (~0.5 MB; 16 ms for a table of 201 samples), and read
 // at every point, where the moments alone took a third of a table law's build. A deeper part's
-// weights are computed when asked for. A factor (1 - s^2)^e of the integrand, which the weight
+// weights are computed when asked for. Rules built for the same weight share their weights
+// (kept_weights). A factor (1 - s^2)^e of the integrand, which the weight
 // leaves out because it is singular at s = 1 (a table's rim, physics.md §9.3), is the same at a
 // part's points for every F: the weights carry it (pow at every point took a fifth of a build).
 class DyadicProductRule {
@@ -129,13 +132,7 @@ class DyadicProductRule {
   DyadicProductRule(std::vector<PolynomialPiece> pieces, double lo, double hi, int degree,
                     double rim = 0.0)
       : pieces_(std::move(pieces)), lo_(lo), hi_(hi), degree_(degree), rim_(rim) {
-    for (int level = 0; level < kLevels; ++level)
-      for (int k = 0; k < (1 << level); ++k)
-        for (int n : kPoints) {
-          double W[kMostProductPoints];
-          compute(level, k, n, W);
-          weights_.insert(weights_.end(), W, W + n);
-        }
+    weights_ = kept_weights();
   }
 
   // The least n of kPoints >= want (or the most).
@@ -157,7 +154,7 @@ class DyadicProductRule {
   // mapped onto the part, the factor included; `scratch` (kMostProductPoints long) holds those
   // of a deeper part.
   const double* weights(int level, long k, int n, double* scratch) const {
-    if (level >= kLevels || weights_.empty()) {
+    if (level >= kLevels || !weights_) {
       compute(level, k, n, scratch);
       return scratch;
     }
@@ -167,10 +164,52 @@ class DyadicProductRule {
       if (p == n) break;
       at += static_cast<std::size_t>(p);
     }
-    return weights_.data() + at;
+    return weights_->data() + at;
   }
 
  private:
+  static constexpr std::size_t kKept = 8;
+
+  bool same(const DyadicProductRule& o) const {
+    if (lo_ != o.lo_ || hi_ != o.hi_ || degree_ != o.degree_ || rim_ != o.rim_ ||
+        pieces_.size() != o.pieces_.size())
+      return false;
+    for (std::size_t i = 0; i < pieces_.size(); ++i) {
+      const PolynomialPiece &p = pieces_[i], &r = o.pieces_[i];
+      if (p.a != r.a || p.b != r.b || p.c != r.c) return false;
+    }
+    return true;
+  }
+
+  // The stored weights, shared with the last kKept rules of the same weight: a model is made for
+  // every evaluation a fit asks for (spot_model.hpp), each with its integrator and this rule, and
+  // computing them takes 16 ms for 201 samples (a fit of 10,000 rows took 45 s instead of 1).
+  std::shared_ptr<const std::vector<double>> kept_weights() const {
+    static std::mutex mutex;
+    static std::vector<std::pair<DyadicProductRule, std::shared_ptr<const std::vector<double>>>>
+        kept;
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& [rule, weights] : kept)
+      if (same(rule)) return weights;
+    auto weights = std::make_shared<std::vector<double>>();
+    for (int level = 0; level < kLevels; ++level)
+      for (int k = 0; k < (1 << level); ++k)
+        for (int n : kPoints) {
+          double W[kMostProductPoints];
+          compute(level, k, n, W);
+          weights->insert(weights->end(), W, W + n);
+        }
+    if (kept.size() == kKept) kept.erase(kept.begin());
+    DyadicProductRule key;
+    key.pieces_ = pieces_;
+    key.lo_ = lo_;
+    key.hi_ = hi_;
+    key.degree_ = degree_;
+    key.rim_ = rim_;
+    kept.emplace_back(std::move(key), weights);
+    return weights;
+  }
+
   void compute(int level, long k, int n, double* W) const {
     const double s0 = part_lo(level, k), s1 = part_hi(level, k);
     double mu[kMostProductPoints], x[kMostProductPoints];
@@ -188,7 +227,8 @@ class DyadicProductRule {
   double lo_ = 0.0, hi_ = 1.0;
   int degree_ = 0;
   double rim_ = 0.0;
-  std::vector<double> weights_;  // part k of level L at (2^L - 1 + k) kPointsSum, n by n
+  // Part k of level L at (2^L - 1 + k) kPointsSum, n by n.
+  std::shared_ptr<const std::vector<double>> weights_;
 };
 
 }  // namespace frictionid::model

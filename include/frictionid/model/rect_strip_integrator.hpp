@@ -19,7 +19,7 @@
 // parts [k, k + 1]/2^L, halved towards c_x and (gamma fractional) the rim until their
 // singularities keep 2 half-lengths away; each takes that factor at Chebyshev points and
 // integrates it against g exactly (product_rule.hpp), with weights that depend only on the part
-// and the number of points, computed once per law (0.5 MB; 10 ms for 201 samples, 44 ms for
+// and the number of points, computed once per law (0.5 MB; 16 ms for 201 samples, 57 ms for
 // 1001). Parts of level 7 (1/128 long) next to c_x or the rim stay cut at the samples
 // within, and at c_x.
 #pragma once

@@ -66,7 +66,7 @@
 // readings of the uniform table (built to a tolerance tightened by (1 - B^2)/(1 + B^2), the
 // annulus' load over what the two carry). Rectangle: RectStripIntegrator
 // (rect_strip_integrator.hpp), the y-integral in closed form: 10-30 us a point (a table law of
-// 201-1001 samples: 12-42 us by the product rule), and exact next to the corners, where
+// 201-1001 samples: 10-41 us by the product rule), and exact next to the corners, where
 // SpotIntegrator's default angular rule errs by up to 5e-9 A0.
 //
 // Accuracy: within 3e-11 A0 of the integrals (|ex|, |ey| <= A0) over the whole plane for the
