@@ -112,15 +112,15 @@ inline void product_weights(const double* mu, int n, double* x, double* W) {
   }
 }
 
-// The product rule on the dyadic parts of one interval [lo, hi] (part k of level L: [lo + (hi -
-// lo) k/2^L, lo + (hi - lo)(k + 1)/2^L]) for one weight. A part's weights W_i depend only on
-// the part, the weight and n, not on F, so they are computed once, for every part of the first
-// kLevels levels and every n in kPoints (~0.5 MB; 16 ms for a table of 201 samples), and read
-// at every point, where the moments alone took a third of a table law's build. A deeper part's
-// weights are computed when asked for. Rules built for the same weight share their weights
-// (kept_weights). A factor (1 - s^2)^e of the integrand, which the weight
-// leaves out because it is singular at s = 1 (a table's rim, physics.md §9.3), is the same at a
-// part's points for every F: the weights carry it (pow at every point took a fifth of a build).
+// The product rule on the dyadic parts of one interval [lo, hi] for one weight: part k of level L
+// is [lo + (hi - lo) k/2^L, lo + (hi - lo)(k + 1)/2^L]. A part's weights W_i depend only on the
+// part, the weight and n, not on F, so they are computed once, for every part of the first kLevels
+// levels and every n in kPoints (~0.5 MB; 16 ms for a table of 201 samples), and read at every
+// point, where the moments alone took a third of a table law's build. A deeper part's weights are
+// computed when asked for. Rules built for the same weight share their weights (kept_weights).
+// A factor (1 - s^2)^e of the integrand, which the weight leaves out because it is singular at
+// s = 1 (a table's rim, docs/physics.md §9.3), is the same at a part's points for every F: the
+// weights carry it (pow at every point took a fifth of a build).
 class DyadicProductRule {
  public:
   static constexpr int kLevels = 8;
