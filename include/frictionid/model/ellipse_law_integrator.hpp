@@ -94,8 +94,7 @@ class EllipseLawIntegrator {
       gamma_ = law.table->gamma();
       for (const PressureTable::Cubic& g : law.table->cubics())
         slope_pieces_.push_back(slope_piece(g));
-      rule_ = DyadicProductRule(slope_pieces_, cuts_[0], cuts_[1], 4,
-                                gamma_ > 0.0 ? gamma_ - 1.0 : 0.0);
+      rule_ = DyadicProductRule(slope_pieces_, cuts_[0], cuts_[1], 4, rim_exponent());
     }
     density_ = law.kind == PressureKind::Hertz || law.kind == PressureKind::Parabolic ||
                law.kind == PressureKind::Table ||
@@ -279,14 +278,7 @@ class EllipseLawIntegrator {
   // the samples within and at rho_e, each piece by tanh-sinh, which absorbs the singularity at
   // an end.
   void by_samples(const Centre& c, double s0, double s1, bool to_rim, double* acc) const {
-    std::vector<double> cuts = {s0};
-    for (auto b = std::upper_bound(breaks_.begin(), breaks_.end(), s0);
-         b != breaks_.end() && *b < s1; ++b)
-      cuts.push_back(*b);
-    if (c.re > s0 && c.re < s1) cuts.push_back(c.re);
-    cuts.push_back(s1);
-    std::sort(cuts.begin(), cuts.end());
-    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    const std::vector<double> cuts = cuts_within(breaks_, s0, s1, c.re);
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       const double lo = cuts[k], hi = cuts[k + 1], len = hi - lo;
       for (const QuadratureNode& g : radial_rule()) {
@@ -302,25 +294,22 @@ class EllipseLawIntegrator {
   void product_rule(const Centre& c, const Piece& p, int depth, double w0, double s0, double s1,
                     double z, double* acc) const {
     const int want = product_points(bernstein_parameter(z), kLogProduct, 4);  // s^(2+d): four
+    // The weights carry the rim's (1 - s^2)^(gamma - 1).
+    const int n = p.dyadic ? DyadicProductRule::points(want) : want;
+    double scratch[kMostProductPoints];
+    const double* W = scratch;
+    if (p.dyadic)
+      W = rule_.weights(depth, static_cast<long>(std::ldexp(w0, depth)), n, scratch);
+    else
+      product_rule_weights(slope_pieces_, s0, s1, n, 4, rim_exponent(), scratch);
+    const double* x = chebyshev_points(n);
     const double mid = 0.5 * (s0 + s1), half = 0.5 * (s1 - s0);
-    if (p.dyadic) {  // the weights carry the rim's (1 - s^2)^(gamma - 1)
-      const int n = DyadicProductRule::points(want);
-      double scratch[kMostProductPoints];
-      const double* W = rule_.weights(depth, static_cast<long>(std::ldexp(w0, depth)), n, scratch);
-      const double* x = chebyshev_points(n);
-      for (int i = 0; i < n; ++i) layer(*c.ray, mid + half * x[i], W[i], acc);
-      return;
-    }
-    const int n = want;
-    double mu[kMostProductPoints], x[kMostProductPoints], W[kMostProductPoints];
-    chebyshev_moments(slope_pieces_, s0, s1, n, 4, mu);
-    product_weights(mu, n, x, W);
-    for (int i = 0; i < n; ++i) {
-      const double s = mid + half * x[i];
-      const double rim = gamma_ > 0.0 ? std::pow((1.0 - s) * (1.0 + s), gamma_ - 1.0) : 1.0;
-      layer(*c.ray, s, W[i] * rim, acc);
-    }
+    for (int i = 0; i < n; ++i) layer(*c.ray, mid + half * x[i], W[i], acc);
   }
+
+  // The exponent of the rim's factor (1 - s^2)^(gamma - 1) that the product rule's weights carry
+  // (0: none).
+  double rim_exponent() const { return gamma_ > 0.0 ? gamma_ - 1.0 : 0.0; }
 
   // Q on [a, b) as a polynomial in u = s - a: 2 gamma s g - (1 - s^2) g' (gamma = 0: -g').
   PolynomialPiece slope_piece(const PressureTable::Cubic& g) const {

@@ -112,6 +112,35 @@ inline void product_weights(const double* mu, int n, double* x, double* W) {
   }
 }
 
+// The weights W_i, i < n, of the part [s0, s1] (above, chebyshev_points(n) mapped onto it) for
+// the weight the pieces make, times a factor (1 - s^2)^rim at their points (none for rim = 0).
+inline void product_rule_weights(const std::vector<PolynomialPiece>& pieces, double s0, double s1,
+                                 int n, int degree, double rim, double* W) {
+  double mu[kMostProductPoints], x[kMostProductPoints];
+  chebyshev_moments(pieces, s0, s1, n, degree, mu);
+  product_weights(mu, n, x, W);
+  if (rim != 0.0)
+    for (int i = 0; i < n; ++i) {
+      const double s = 0.5 * (s0 + s1) + 0.5 * (s1 - s0) * x[i];
+      W[i] *= std::pow((1.0 - s) * (1.0 + s), rim);
+    }
+}
+
+// [lo, hi] cut at the sorted breaks strictly within and at `at` if it lies within: the pieces a
+// part next to a singularity is integrated on, each by a rule that takes its ends.
+inline std::vector<double> cuts_within(const std::vector<double>& breaks, double lo, double hi,
+                                       double at) {
+  std::vector<double> cuts = {lo};
+  for (auto b = std::upper_bound(breaks.begin(), breaks.end(), lo); b != breaks.end() && *b < hi;
+       ++b)
+    cuts.push_back(*b);
+  if (at > lo && at < hi) cuts.push_back(at);
+  cuts.push_back(hi);
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  return cuts;
+}
+
 // The product rule on the dyadic parts of one interval [lo, hi] for one weight: part k of level L
 // is [lo + (hi - lo) k/2^L, lo + (hi - lo)(k + 1)/2^L]. A part's weights W_i depend only on the
 // part, the weight and n, not on F, so they are computed once, for every part of the first kLevels
@@ -200,26 +229,12 @@ class DyadicProductRule {
           weights->insert(weights->end(), W, W + n);
         }
     if (kept.size() == kKept) kept.erase(kept.begin());
-    DyadicProductRule key;
-    key.pieces_ = pieces_;
-    key.lo_ = lo_;
-    key.hi_ = hi_;
-    key.degree_ = degree_;
-    key.rim_ = rim_;
-    kept.emplace_back(std::move(key), weights);
+    kept.emplace_back(*this, weights);  // (its own weights_ not yet set)
     return weights;
   }
 
   void compute(int level, long k, int n, double* W) const {
-    const double s0 = part_lo(level, k), s1 = part_hi(level, k);
-    double mu[kMostProductPoints], x[kMostProductPoints];
-    chebyshev_moments(pieces_, s0, s1, n, degree_, mu);
-    product_weights(mu, n, x, W);
-    if (rim_ != 0.0)
-      for (int i = 0; i < n; ++i) {
-        const double s = 0.5 * (s0 + s1) + 0.5 * (s1 - s0) * x[i];
-        W[i] *= std::pow((1.0 - s) * (1.0 + s), rim_);
-      }
+    product_rule_weights(pieces_, part_lo(level, k), part_hi(level, k), n, degree_, rim_, W);
   }
 
   static constexpr std::size_t kPointsSum = 252;  // the sum of kPoints

@@ -223,7 +223,7 @@ class SpotIntegralTable {
     // on a rectangle only the ring (the others by strips). An annulus on an ellipse comes from
     // the uniform ellipse's table and a table law from layers of it (below).
     const SpotIntegrator integrate(spot, law, q_);
-    // (The strips only on a rectangle: under a table law they compute its moments up front.)
+    // (The strips only on a rectangle: under a table law they compute its weights up front.)
     const RectStripIntegrator strips(kind_ == SpotKind::Rect ? law : PressureLaw<double>::uniform(),
                                      q_);
     const PressureMap none;
