@@ -113,8 +113,8 @@ BENCHMARK(BM_Approximant<model::ApproximantForm::Seed, true>)->Name("BM_SeedAppr
 BENCHMARK(BM_Approximant<model::ApproximantForm::Corrected, true>)
     ->Name("BM_CorrectedApproximantAligned");
 
-using Jet = ceres::Jet<double, 9>;
-static_assert(kParamCount == 9, "one Jet component per parameter");
+// One Jet component per parameter.
+using Jet = ceres::Jet<double, kParamCount>;
 
 std::array<Jet, kParamCount> jet_params(const model::PressureLaw<double>& law) {
   const auto p = default_parameters(law, 0.6, 1.3, 0.2);
