@@ -25,9 +25,11 @@
 // Each piece is halved until its singularities keep 1.3 half-lengths from its middle, by a
 // lower bound on their distance (U is analytic within the distance from c/s to the rim, found
 // by bisection), and then takes Gauss–Legendre with as many points as that distance asks for
-// 1e-12; parts next to rho_e stop at 1% of it and take tanh-sinh, as does a rim end that keeps
-// a fractional power. 250-650 readings of U's table a point (0.05-0.3 ms) for ellipses of aspect
-// 0.1-3, about 4-7 more per sample of a table; within 1e-12 A0 of the rays at their fine rules.
+// 1e-12; parts next to rho_e stop at 1% of it and take Gauss–Legendre in t with s = sin^2(pi
+// t/2) across the part (crossing_rule: 20 points, where tanh-sinh took 51), a rim end that
+// keeps a fractional power tanh-sinh. 250-650 readings of U's table a point (0.05-0.3 ms) for
+// ellipses of aspect 0.1-3, about 4-7 more per sample of a table; within 1e-12 A0 of the rays
+// at their fine rules.
 //
 // A table of 64 samples or more is not cut at its samples. Its slope is
 // -L' = (1 - s^2)^(gamma - 1) Q(s), Q a polynomial of degree <= 4 between two samples (g cubic,
@@ -39,7 +41,8 @@
 // parts of itself, not cut at rho_e (the part that holds it is halved until it is 1% of rho_e,
 // then cut there), and the weights of the first 8 levels, the rim's (1 - s^2)^(gamma - 1)
 // included, are computed once per law (DyadicProductRule), where their moments took a third of
-// a table's build. Parts next to rho_e or a fractional rim stay cut at the samples within them.
+// a table's build. Parts next to rho_e or a fractional rim stay cut at the samples within them,
+// each piece by the crossing rule (tanh-sinh at a fractional rim).
 // Readings no longer grow with the samples (240-570 a point for 201-1001 samples where the cuts
 // took 1,200-5,600): 45-155 us a point against 225-1,200 us, within 2e-13 A0 of the cuts.
 #pragma once
@@ -84,16 +87,18 @@ class EllipseLawIntegrator {
     for (double b : law.breakpoints())
       if (b > breaks_.back() && b < 1.0) breaks_.push_back(b);
     breaks_.push_back(1.0);
-    product_ = law.kind == PressureKind::Table && law.table && !by_samples &&
-               breaks_.size() - 2 >= kProductSamples;
+    const bool table = law.kind == PressureKind::Table && law.table;
+    if (table) {
+      gamma_ = law.table->gamma();
+      for (const PressureTable::Cubic& g : law.table->cubics())
+        slope_pieces_.push_back(slope_piece(g));
+    }
+    product_ = table && !by_samples && breaks_.size() - 2 >= kProductSamples;
     if (!product_) {
       cuts_ = breaks_;
     } else {
       cuts_ = {0.0, 1.0};
       if (rim_power_ > 1) cuts_.insert(cuts_.begin() + 1, breaks_[breaks_.size() - 2]);
-      gamma_ = law.table->gamma();
-      for (const PressureTable::Cubic& g : law.table->cubics())
-        slope_pieces_.push_back(slope_piece(g));
       rule_ = DyadicProductRule(slope_pieces_, cuts_[0], cuts_[1], 4, rim_exponent());
     }
     density_ = law.kind == PressureKind::Hertz || law.kind == PressureKind::Parabolic ||
@@ -118,11 +123,12 @@ class EllipseLawIntegrator {
   }
 
  private:
-  static constexpr double kLog = 28.0;    // -ln of a Gauss–Legendre part's relative error
-  static constexpr int kLeast = 4;        // a quadratic L' times s^4: degree 6
-  static constexpr int kMost = 32;        // points of a part at z = kZ: 28
-  static constexpr double kZ = 1.3;       // singularities this many half-lengths away: one rule
-  static constexpr double kFloor = 1e-2;  // parts next to rho_e shorter than this times rho_e
+  static constexpr double kLog = 28.0;       // -ln of a Gauss–Legendre part's relative error
+  static constexpr int kLeast = 4;           // a quadratic L' times s^4: degree 6
+  static constexpr int kMost = 32;           // points of a part at z = kZ: 28
+  static constexpr double kZ = 1.3;          // singularities this many half-lengths away: one rule
+  static constexpr double kZCrossing = 3.0;  // the law's branch point this far: crossing_rule
+  static constexpr double kFloor = 1e-2;     // parts next to rho_e shorter than this times rho_e
   static constexpr int kMaxDepth = 60;
   static constexpr double kNearRim = 0.9;      // rho_e this far across the rim piece: cut in w
   static constexpr double kZProduct = 2.0;     // singularities this far: one product rule
@@ -178,8 +184,14 @@ class EllipseLawIntegrator {
   // ends there (its rule takes that end), s = 1.
   double singular_radius(const Centre& c, double s) const {
     if (c.norm == 0.0) return HUGE_VAL;  // U(0) s^(2+d), a polynomial
+    const double beyond = c.norm / std::max(1.0, q_) - s;
+    // D is at most the distance from c/s to the rim along its own ray, |c/s| |1 - 1/rho|
+    // (rho = rho_e(c/s)): when even that leaves `beyond` the larger, the nearest rim point
+    // (a third of a table law's build) is not needed.
+    const double rho = c.re / s, most = c.norm / s * std::fabs(rho - 1.0) / rho;
+    if (beyond >= s * s * most / (c.norm + s * most)) return beyond;
     const double D = rim_distance(c.cx / s, c.cy / s);
-    return std::max(s * s * D / (c.norm + s * D), c.norm / std::max(1.0, q_) - s);
+    return std::max(s * s * D / (c.norm + s * D), beyond);
   }
   double law_radius(double s, bool ends_at_rim) const {
     return fractional_ ? std::min(1.0 + s, ends_at_rim ? HUGE_VAL : 1.0 - s) : HUGE_VAL;
@@ -250,8 +262,8 @@ class EllipseLawIntegrator {
     const bool tiny = (s_length < kFloor * c.re && from_re <= s_length && z_law >= kZ) ||
                       (product && at_rim && !rim_smooth_ && s_length < kFloor);
     if (z >= (product ? kZProduct : kZ) || tiny || depth >= kMaxDepth) {
-      const bool singular =
-          tiny || end0 == End::Centre || end1 == End::Centre || (at_rim && !rim_smooth_);
+      const bool fractional_rim = at_rim && !rim_smooth_;
+      const bool singular = tiny || end0 == End::Centre || end1 == End::Centre || fractional_rim;
       if (product) {
         if (singular)
           by_samples(c, s0, s1, end1 == End::Rim, acc);
@@ -259,14 +271,19 @@ class EllipseLawIntegrator {
           product_rule(c, p, depth, w0, s0, s1, z, acc);
         return;
       }
-      for (const QuadratureNode& g :
-           singular ? radial_rule() : gauss_legendre_rule(points_for(z))) {
+      // The crossing rule where the law's branch point keeps a part's length beyond its ends.
+      const std::vector<QuadratureNode>& rule = fractional_rim || (singular && z_law < kZCrossing)
+                                                    ? radial_rule()
+                                                : singular ? crossing_rule()
+                                                           : gauss_legendre_rule(points_for(z));
+      const PolynomialPiece* piece = slope_piece_at(sm);
+      for (const QuadratureNode& g : rule) {
         const double w = w0 + 2.0 * h * g.from_left;
         // 1 - s to full precision next to the rim.
         const double omr =
             p.m == 1 && end1 == End::Rim ? 2.0 * h * p.len * g.from_right : p.one_minus_s(w);
         const double s = p.m == 1 ? p.s(w) : 1.0 - omr;
-        layer(*c.ray, s, -g.weight * 2.0 * h * p.ds_dw(w) * law_slope(law_, s, omr), acc);
+        layer(*c.ray, s, -g.weight * 2.0 * h * p.ds_dw(w) * slope(piece, s, omr), acc);
       }
       return;
     }
@@ -281,10 +298,15 @@ class EllipseLawIntegrator {
     const std::vector<double> cuts = cuts_within(breaks_, s0, s1, c.re);
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       const double lo = cuts[k], hi = cuts[k + 1], len = hi - lo;
-      for (const QuadratureNode& g : radial_rule()) {
+      const bool rim = to_rim && hi == s1;
+      // tanh-sinh at a fractional rim, or where the law's branch point there is nearer than the
+      // piece is long.
+      const bool branch = fractional_ && (rim || 1.0 - hi < len);
+      const PolynomialPiece* piece = slope_piece_at(0.5 * (lo + hi));
+      for (const QuadratureNode& g : branch ? radial_rule() : crossing_rule()) {
         const double s = lo + len * g.from_left;
-        const double omr = to_rim && hi == s1 ? len * g.from_right : 1.0 - s;
-        layer(*c.ray, s, -g.weight * len * law_slope(law_, s, omr), acc);
+        const double omr = rim ? len * g.from_right : 1.0 - s;
+        layer(*c.ray, s, -g.weight * len * slope(piece, s, omr), acc);
       }
     }
   }
@@ -305,6 +327,32 @@ class EllipseLawIntegrator {
     const double* x = chebyshev_points(n);
     const double mid = 0.5 * (s0 + s1), half = 0.5 * (s1 - s0);
     for (int i = 0; i < n; ++i) layer(*c.ray, mid + half * x[i], W[i], acc);
+  }
+
+  // The rule of a part with rho_e(c) at (or within its length of) an end, where U goes like
+  // d^2 ln|d|: Gauss–Legendre in t with s = sin^2(pi t/2) across the part, d^2 ln d turning into
+  // t^5 ln t. 20 points where tanh-sinh took 51, within 2e-14 A0 of it for aspects 0.05-4 and
+  // tables of 20-63 samples.
+  static const std::vector<QuadratureNode>& crossing_rule() {
+    static const std::vector<QuadratureNode> rule = make_sine_squared_rule(20);
+    return rule;
+  }
+
+  // A table law's slope polynomial on the piece that holds s (between two cuts: the piece of
+  // every part), or none for the other laws.
+  const PolynomialPiece* slope_piece_at(double s) const {
+    if (slope_pieces_.empty()) return nullptr;
+    const auto it = std::upper_bound(slope_pieces_.begin() + 1, slope_pieces_.end(), s,
+                                     [](double v, const PolynomialPiece& q) { return v < q.a; });
+    return &*(it - 1);
+  }
+
+  // L'(s), 1 - s = omr: a table's from its piece's polynomial, -(1 - s^2)^(gamma - 1) Q (the
+  // interpolant's two searches and pow took a fifth of a table's build), others from the law.
+  double slope(const PolynomialPiece* piece, double s, double omr) const {
+    if (!piece) return law_slope(law_, s, omr);
+    const double Q = (*piece)(s);
+    return gamma_ > 0.0 ? -std::exp((gamma_ - 1.0) * std::log(omr * (1.0 + s))) * Q : -Q;
   }
 
   // The exponent of the rim's factor (1 - s^2)^(gamma - 1) that the product rule's weights carry
