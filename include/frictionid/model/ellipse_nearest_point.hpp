@@ -53,6 +53,11 @@ inline RimPoint nearest_rim_point(double q, double x, double y) {
             if (f == 0.0) break;
             const double newton = t + f / (2.0 * (a * a * u + b * b * v));
             if (!(newton > t)) break;  // converged to the last bit
+            // Converging quadratically: this step leaves ~1e-18 of t + 1, below its last bit.
+            if (newton - t <= 1e-9 * (t + 1.0)) {
+              lo = newton;
+              break;
+            }
             if (newton < hi && newton - lo >= 0.5 * (hi - lo)) {
               t = newton;
               continue;
