@@ -59,7 +59,7 @@
 //
 // The points. Ellipse: SpotIntegrator, whose rays are closed forms under the power laws (uniform,
 // Hertz, parabolic, power:n: 6-20 us a point); under a table law, layers of the uniform ellipse
-// (ellipse_law_integrator.hpp) from that ellipse's own table, built first (70-100 us a point for 41
+// (ellipse_law_integrator.hpp) from that ellipse's own table, built first (45-75 us a point for 41
 // samples; from 64 a product rule whose readings do not grow with them, 45-155 us for 201-1001; the
 // table then takes 9,000-30,000 points, every sample a line its cells resolve). An annulus has no
 // points of its own: it is the uniform ellipse less the one scaled by its inner radius, two
