@@ -8,6 +8,7 @@
 // spot's centre instead, where the integrand is smooth.
 #include <frictionid/model/spot_integral_table.hpp>
 
+#include <ceres/jet.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -276,6 +277,54 @@ TEST(SpotIntegralTable, OtherLawsMatchTheIntegratorToo) {
     EXPECT_LT(w.error, kTolerance)
         << c.law.name << " on kind " << static_cast<int>(c.spot.kind) << ": channel " << w.channel
         << " at (" << w.cx << ", " << w.cy << ")";
+  }
+}
+
+// An elongated ellipse's table takes confocal coordinates outside its rim, where the reference
+// polar ones stretched its cells 1/q times along the rim: its points grew as 1/q (144,000 at
+// q = 0.02, 240,000 at 0.01). Now few at any aspect, and as exact.
+TEST(SpotIntegralTable, ElongatedEllipsesStayExactInFewPoints) {
+  static const std::vector<QuadratureNode> rim = make_tanh_sinh_rule(1.0 / 128.0, 1e-30);
+  const std::vector<NamedLaw> cases = {{"hertz", PressureLaw<double>::hertz()},
+                                       {"uniform", PressureLaw<double>::uniform()},
+                                       {"ring", PressureLaw<double>::ring()}};
+  for (double q : {0.2, 0.02, 0.005})
+    for (const NamedLaw& l : cases) {
+      const ContactSpot spot = ContactSpot::ellipse(q);
+      const SpotIntegralTable& table = table_for(spot, l);
+      const auto centres = sample_centres(SpotKind::Ellipse, q, 120, 31);
+      const Reference reference(spot, l.law, q,
+                                l.law.kind == PressureKind::Ring ? &rim : &fine_rule());
+      const Worst w = compare(table, reference, centres, area(spot, l.law, q));
+      EXPECT_LT(w.error, kTolerance) << l.name << " q " << q << ": channel " << w.channel << " at ("
+                                     << w.cx << ", " << w.cy << ")";
+      EXPECT_LT(table.stats().points, 30000u) << l.name << " q " << q;
+    }
+}
+
+// Read with dual numbers (a fit's derivatives along c), the confocal patch's coordinates carry
+// the derivatives of the interpolant: against central differences of the table itself.
+TEST(SpotIntegralTable, ConfocalCoordinatesCarryTheDerivativesAlongTheCentre) {
+  const double q = 0.05;
+  const SpotIntegralTable& table =
+      table_for(ContactSpot::ellipse(q), {"hertz", PressureLaw<double>::hertz()});
+  using J = ceres::Jet<double, 2>;
+  const double A0 = area(ContactSpot::ellipse(q), PressureLaw<double>::hertz(), q);
+  // Outside the rim, off the axes and near them, next to the rim and 2 spot radii away.
+  for (const auto& c : std::vector<std::array<double, 2>>{
+           {0.6, 0.05}, {-0.3, -0.07}, {1.02, 0.004}, {0.05, 0.0521}, {1.5, 1.1}}) {
+    const auto d = table.channels_at(J(c[0], 0), J(c[1], 1));
+    const double h = 1e-6;
+    for (int dir = 0; dir < 2; ++dir) {
+      const double dx = dir == 0 ? h : 0.0, dy = dir == 1 ? h : 0.0;
+      const auto plus = table.channels_at(c[0] + dx, c[1] + dy);
+      const auto minus = table.channels_at(c[0] - dx, c[1] - dy);
+      for (std::size_t k = 0; k < 12; ++k) {
+        const double fd = (plus[k] - minus[k]) / (2.0 * h);
+        EXPECT_NEAR(d[k].v[dir], fd, 1e-6 * A0 + 1e-6 * std::fabs(fd))
+            << "channel " << k << " along " << dir << " at (" << c[0] << ", " << c[1] << ")";
+      }
+    }
   }
 }
 

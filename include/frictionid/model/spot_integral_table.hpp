@@ -19,7 +19,11 @@
 //
 // Patches. The quadrant is covered by patches whose coordinate lines follow those sets:
 //  - ellipse: reference polar coordinates (P, beta) of (c_x, c_y/q) for P <= P_near: the rim and
-//    every step are circles P = const;
+//    every step are circles P = const. Below aspect 0.3 only inside the rim, and outside it
+//    confocal coordinates (mu, nu) about the foci (+-sqrt(1 - q^2), 0), out to the confocal
+//    ellipse of minor semi-axis R_near: the rim is mu = atanh(q), and they are conformal, so a
+//    cell square in them is square on the plane. The polar cells along the long sides were 1/q
+//    times longer along the rim than across it (144,000 points at q = 0.02, now 6,300);
 //  - rectangle: physical Cartesian coordinates in the box [0, R_near]^2, and a disk of polar
 //    coordinates (rho, theta) about every corner (x_s, q) (x_s = 1 or a step B), in which the
 //    lines through the corner are rays theta = const; the box's cells next to a corner lie
@@ -53,7 +57,8 @@
 // exactly on halves until what a cut drops sums to < kStoreTolerance), and each piece keeps per
 // row only the coefficients that matter. The build is deterministic: the same bits on any number
 // of threads. 2,000-8,000 points for an ellipse, 8,000-23,000 for a rectangle at q = 0.4-2.5;
-// an ellipse of aspect 0.1 or 4 needs 10,000-30,000 (0.05: 49,000); a map ~450 per grid cell
+// an ellipse of aspect 0.001-0.3 5,000-12,000 (the ring law up to 30,000), of aspect 4 11,000;
+// a map ~450 per grid cell
 // (degree 9, then 18: 66,000 for the 13 x 9 footprint, 2.5 s of CPU time at ~28 us a point;
 // 190,000 and 13 s for a rough random 15 x 15 grid).
 //
@@ -281,6 +286,8 @@ class SpotIntegralTable {
     std::array<double, kChannels> operator()(double s) const {
       if (!t_->ray_by_slices() || centre_) return t_->channels_at(cx_ / s, cy_ / s);
       const double P = P_ / s;
+      // Beyond the rim of an elongated ellipse the confocal angle changes along the ray.
+      if (t_->confocal_ && P > t_->near_) return t_->channels_at(cx_ / s, cy_ / s);
       const std::size_t patch = P <= t_->near_ ? 0 : 1;
       const double u0 = patch == 0 ? P : (r_ < HUGE_VAL ? s / r_ : 0.0), u1 = u1_[patch];
       const Patch& g = t_->patches_[patch];
@@ -423,7 +430,8 @@ class SpotIntegralTable {
   static constexpr double kCornerRadius = 0.5;
   static constexpr double kCornerInset = 0.7;       // graded width / corner radius (< 1/sqrt 2)
   static constexpr double kCornerAngle = M_PI / 4;  // graded angle next to a line's direction
-  static constexpr double kSqueeze = 0.3;  // grade the reference angle when atanh(q) is smaller
+  static constexpr double kSqueeze = 0.3;   // grade the reference angle when atanh(q) is smaller
+  static constexpr double kConfocal = 0.3;  // outside an ellipse of aspect below: confocal patch
   static constexpr std::size_t kMaxGradedBreaks = 8;
 
   // Which channels change sign with c_x and with c_y.
@@ -434,7 +442,7 @@ class SpotIntegralTable {
 
   // --- The table --------------------------------------------------------------------------------
 
-  enum class Coords { Polar, Box, Corner, Far };
+  enum class Coords { Polar, Box, Corner, Far, Confocal };
 
   // One coordinate of a root cell: s in [-1, 1] to the patch coordinate u in [lo, hi], linear or
   // graded towards a singular line at hi, u = hi - (hi - lo) ((1 - s)/2)^power (at lo: mirrored).
@@ -535,6 +543,10 @@ class SpotIntegralTable {
         cx = p.x0 + std::cos(u1) / u0;
         cy = p.y0 + std::sin(u1) / u0;
         return;
+      case Coords::Confocal:
+        cx = focal_ * std::cosh(u0) * std::cos(u1);
+        cy = focal_ * std::sinh(u0) * std::sin(u1);
+        return;
     }
   }
 
@@ -564,6 +576,7 @@ class SpotIntegralTable {
         u1 = P > 0.0 ? E(atan2(Y, X)) : E(0.0);
         return 0;
       }
+      if (confocal_ && confocal(ax, ay, u0, u1)) return 2;
     } else if (ax <= near_ && ay <= near_) {
       for (std::size_t i = 2; i < patches_.size(); ++i) {
         const Patch& p = patches_[i];
@@ -582,6 +595,25 @@ class SpotIntegralTable {
     u0 = r < HUGE_VAL ? E(1.0 / r) : E(0.0);
     u1 = atan2(ay, ax);
     return 1;
+  }
+
+  // The confocal coordinates (mu, nu) of (ax, ay) in the first quadrant, x = f cosh mu cos nu,
+  // y = f sinh mu sin nu, if mu is within the patch. B = f sinh mu solves
+  // B^4 - (r^2 - f^2) B^2 - f^2 y^2 = 0 (r = |c|), taken in the form without cancellation.
+  template <typename E>
+  bool confocal(const E& ax, const E& ay, E& mu, E& nu) const {
+    using std::atan2;
+    using std::log1p;
+    using std::sqrt;
+    const double f2 = focal_ * focal_;
+    const E d = ax * ax + ay * ay - f2, root = sqrt(d * d + 4.0 * f2 * ay * ay);
+    const E B2 = d >= 0.0 ? E(0.5 * (d + root)) : E(2.0 * f2 * ay * ay / (root - d));
+    const E b = sqrt(B2) / focal_;  // sinh mu
+    const E m = log1p(b + b * b / (1.0 + sqrt(1.0 + b * b)));
+    if (!(value_of(m) <= mu_far_)) return false;
+    mu = m;
+    nu = atan2(ay / b, ax / sqrt(1.0 + b * b));
+    return true;
   }
 
   // Whether Ray may read pieces by slices: an ellipse's own table (not an annulus' pair).
@@ -814,12 +846,34 @@ class SpotIntegralTable {
     const std::vector<Axis> quarter = {Axis{0.0, 0.5 * M_PI, 1, true}};
     const std::vector<Axis> inverse = {Axis{0.0, 1.0 / far, 1, true}};
     if (kind_ == SpotKind::Ellipse) {
-      // The polar patch reaches every point nearer than R_near.
-      near_ = far / std::min(1.0, q_);
+      // The polar patch reaches every point nearer than R_near; on an elongated ellipse only
+      // the spot itself, and the confocal patch the rest (below).
+      confocal_ = q_ < kConfocal;
+      near_ = confocal_ ? 1.0 : far / std::min(1.0, q_);
       add_patch(Patch(Coords::Polar),
                 axis_cells(0.0, near_, lines, std::vector<double>(lines.size(), kGraded), power),
                 reference_quarter());
       add_patch(Patch(Coords::Far), inverse, quarter);
+      if (confocal_) {
+        // Outside an ellipse of aspect q < 1, confocal coordinates about its foci (+-f, 0),
+        // f = sqrt(1 - q^2): the rim is mu = atanh(q), and they are conformal, so a cell square
+        // in them is square on the plane, where the integrals vary alike both ways. In the
+        // reference polar coordinates the cells along the long sides were 1/q times longer
+        // along the rim than across it, and the table grew as 1/q. The patch reaches the
+        // confocal ellipse whose minor semi-axis is R_near, beyond which the far patch takes
+        // over; its angle is graded towards the tips at the rim's scale there, atanh(q).
+        focal_ = std::sqrt((1.0 - q_) * (1.0 + q_));
+        const double mu_rim = std::atanh(q_);
+        mu_far_ = std::asinh(far / focal_);
+        std::vector<double> b = {0.0, 0.5 * M_PI};
+        for (double w = mu_rim; w < 0.25 * M_PI; w *= 3.0) b.push_back(w);
+        std::sort(b.begin(), b.end());
+        std::vector<Axis> turn;
+        for (std::size_t i = 0; i + 1 < b.size(); ++i)
+          turn.push_back(Axis{b[i], b[i + 1], 1, true});
+        add_patch(Patch(Coords::Confocal), axis_cells(mu_rim, mu_far_, {mu_rim}, {kGraded}, power),
+                  turn);
+      }
       return;
     }
     // The corners (x, q) of the lines with the edge y = q, each the centre of a disk of polar
@@ -1335,9 +1389,11 @@ class SpotIntegralTable {
   double q_;
   std::shared_ptr<const PressureMap> map_;  // a map's table: its map
   double A0_ = 1.0, Ax_ = 0.0, Ay_ = 0.0, Axx_ = 0.0, Axy_ = 0.0, Ayy_ = 0.0;
-  double scale_ = 1.0;  // the unit of the tolerances: A0, or less (see the private constructor)
-  double near_ = 0.0;   // the polar patch's radius P_near, or the box's side R_near
-  std::vector<Patch> patches_;  // ellipse: polar, far; rectangle: box, far, corners
+  double scale_ = 1.0;     // the unit of the tolerances: A0, or less (see the private constructor)
+  double near_ = 0.0;      // the polar patch's radius P_near, or the box's side R_near
+  bool confocal_ = false;  // an elongated ellipse: the confocal patch outside the rim
+  double focal_ = 0.0, mu_far_ = 0.0;  // its foci (+-focal_, 0) and outer bound
+  std::vector<Patch> patches_;         // ellipse: polar, far; rectangle: box, far, corners
   std::vector<Root> roots_;
   std::vector<TreeNode> tree_;
   std::vector<Leaf> leaves_;
