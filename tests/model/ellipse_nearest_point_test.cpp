@@ -65,4 +65,20 @@ TEST(NearestRimPoint, MatchesABruteForceSearchAlongTheRim) {
   std::printf("[ worst    ] nearest rim point vs brute force: %.3g\n", worst);
 }
 
+// Off the long axis by next to nothing, from inside (where the nearest point leaves the axis)
+// and outside: the root's variable kept only ~1e-16/offset of its relative precision there, and
+// below an offset of 2^-53 the rim point went to infinity (a table law's points on ellipse:2,
+// read at cos(pi/2) = 6e-17, were 1e-7 off, and its table grew past its budget).
+TEST(NearestRimPoint, NextToTheLongAxisItStaysExact) {
+  for (double q : {0.3, 2.5})
+    for (double along : {0.2, 0.6, 1.5})
+      for (double off : {1e-20, 6e-17, 1e-13, 1e-8, 1e-4}) {
+        const double x = q < 1.0 ? along : off, y = q < 1.0 ? off : q * along;
+        const fm::RimPoint p = fm::nearest_rim_point(q, x, y);
+        EXPECT_NEAR(p.distance, brute_force_distance(q, x, y), 1e-12)
+            << "q " << q << " at (" << x << ", " << y << ")";
+        EXPECT_NEAR(p.x * p.x + (p.y / q) * (p.y / q), 1.0, 1e-14) << "q " << q;
+      }
+}
+
 }  // namespace

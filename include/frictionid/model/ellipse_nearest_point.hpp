@@ -39,38 +39,41 @@ inline RimPoint nearest_rim_point(double q, double x, double y) {
         p.distance = 0.0;
       } else {
         const double r0 = (e0 / e1) * (e0 / e1), n0 = r0 * z0;
-        double lo = z1 - 1.0, hi = g < 0.0 ? 0.0 : std::hypot(n0, z1) - 1.0, t = lo;
-        // f is convex and decreasing for t > -1 and f(lo) >= 0, so Newton from lo rises to the
+        // In w = t + 1, whose lower end z1 keeps its relative precision: next to the long axis
+        // (z1 below ~1e-8) t + 1 lost it, and from inside with z1 < 2^-53 it rounded to 0, the
+        // rim point to infinity.
+        double lo = z1, hi = g < 0.0 ? 1.0 : std::hypot(n0, z1), w = lo;
+        // f is convex and decreasing for w > 0 and f(lo) >= 0, so Newton from lo rises to the
         // root without passing it; a step that gains less than half the bracket is followed by
         // a bisection. 5-10 evaluations where bisection to the last bit took ~60.
         for (int i = 0; i < 200 && lo < hi; ++i) {
-          const double u = 1.0 / (t + r0), v = 1.0 / (t + 1.0);
+          const double u = 1.0 / (w + (r0 - 1.0)), v = 1.0 / w;
           const double a = n0 * u, b = z1 * v, f = a * a + b * b - 1.0;
           if (f < 0.0) {
-            hi = t;
+            hi = w;
           } else {
-            lo = t;
+            lo = w;
             if (f == 0.0) break;
-            const double newton = t + f / (2.0 * (a * a * u + b * b * v));
-            if (!(newton > t)) break;  // converged to the last bit
-            // Converging quadratically: this step leaves ~1e-18 of t + 1, below its last bit.
-            if (newton - t <= 1e-9 * (t + 1.0)) {
+            const double newton = w + f / (2.0 * (a * a * u + b * b * v));
+            if (!(newton > w)) break;  // converged to the last bit
+            // Converging quadratically: this step leaves ~1e-18 of w, below its last bit.
+            if (newton - w <= 1e-9 * w) {
               lo = newton;
               break;
             }
             if (newton < hi && newton - lo >= 0.5 * (hi - lo)) {
-              t = newton;
+              w = newton;
               continue;
             }
             if (newton < hi) lo = newton;
           }
           const double mid = 0.5 * (lo + hi);
           if (mid == lo || mid == hi) break;
-          t = mid;
+          w = mid;
         }
-        t = lo;
-        x0 = r0 * y0 / (t + r0);
-        x1 = y1 / (t + 1.0);
+        w = lo;
+        x0 = r0 * y0 / (w + (r0 - 1.0));
+        x1 = y1 / w;
         p.distance = std::hypot(x0 - y0, x1 - y1);
       }
     } else {
