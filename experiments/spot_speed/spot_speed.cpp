@@ -5,19 +5,21 @@
 //   spot_speed [--repeat N]      # run.sh builds and runs it
 //
 // For ellipse:0.6 with the Hertz law, rect:0.7 with the parabolic law, the slow ellipses (Hertz
-// at q = 0.1 and 4), table laws of 41 and 201 samples (a modulated Hertz profile) and pressure
-// maps (data/footprint_map.csv, 13 x 9, and a random 15 x 15 grid): the table's build on 1 and 2
-// threads (wall and process CPU time, median of N builds; of min(N, 3) for the builds over 1 s),
-// its size, and the time of one evaluation of the twelve integrals by the table, by
-// SpotIntegrator (rays) and by what gives the table its points (RectStripIntegrator,
+// at q = 0.1, 0.05, 0.01 and 4), table laws of 41 and 201 samples (a modulated Hertz profile)
+// and pressure maps (data/footprint_map.csv, 13 x 9, and a random 15 x 15 grid): the table's
+// build on 1 and 2 threads (wall and process CPU time, median of N builds; of min(N, 3) for the
+// builds over 1 s), its size, and the time of one evaluation of the twelve integrals by the table,
+// by SpotIntegrator (rays) and by what gives the table its points (RectStripIntegrator,
 // MapStripIntegrator, or for a table law on an ellipse EllipseLawIntegrator through
 // SpotPointIntegrator), each the median CPU time of N passes over 256 fixed centres of rotation
 // (|c| log-uniform in [0.01, 1000] units of R, any direction), on one thread. The table's
 // largest difference over those centres from SpotIntegrator at its fine angular rule (for a
 // table law: from the model's points, layers or strips) is printed as a check.
 //
-//   spot_speed [--repeat N] [--root DIR] [--passes-only]
-//   # DIR: the repository, for data/footprint_map.csv; --passes-only: the one-pass table only
+//   spot_speed [--repeat N] [--root DIR] [--passes-only] [--table-law-aspects]
+//   # DIR: the repository, for data/footprint_map.csv; --passes-only: the one-pass table only;
+//   # --table-law-aspects: only the builds of table laws of 41 and 201 samples on ellipses of
+//   # aspect 0.1 to 4 (one build each, one thread)
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -243,6 +245,23 @@ void pass(const std::string& name, const ContactSpot& spot, const PressureLaw<do
   }
 }
 
+// One build on one thread of a table law of 41 and of 201 samples on ellipses of aspect 0.1 to 4:
+// CPU time and points.
+void table_law_aspects() {
+  std::printf("| table law on an ellipse | q = 0.1 | 0.3 | 0.5 | 0.7 | 1 | 2 | 4 |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (int samples : {41, 201}) {
+    std::printf("| %d samples |", samples);
+    for (double q : {0.1, 0.3, 0.5, 0.7, 1.0, 2.0, 4.0}) {
+      const double c0 = process_cpu();
+      const SpotIntegralTable table(ContactSpot::ellipse(q), sampled_law(samples), q, {}, 1);
+      std::printf(" %.2f s, %zu |", process_cpu() - c0, table.stats().points);
+      std::fflush(stdout);
+    }
+    std::printf("\n");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -255,10 +274,15 @@ int main(int argc, char** argv) {
       repeat = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--passes-only") {
       passes_only = true;
+    } else if (a == "--table-law-aspects") {
+      table_law_aspects();
+      return 0;
     } else if (a == "--root" && i + 1 < argc) {
       root = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: spot_speed [--repeat N] [--root DIR] [--passes-only]\n");
+      std::fprintf(stderr,
+                   "usage: spot_speed [--repeat N] [--root DIR] [--passes-only] "
+                   "[--table-law-aspects]\n");
       return 2;
     }
   }
@@ -273,6 +297,7 @@ int main(int argc, char** argv) {
     run("ellipse:0.1, hertz", ContactSpot::ellipse(0.1), PressureLaw<double>::hertz(), repeat);
     run("ellipse:4, hertz", ContactSpot::ellipse(4.0), PressureLaw<double>::hertz(), repeat);
     run("ellipse:0.05, hertz", ContactSpot::ellipse(0.05), PressureLaw<double>::hertz(), repeat);
+    run("ellipse:0.01, hertz", ContactSpot::ellipse(0.01), PressureLaw<double>::hertz(), repeat);
     run("ellipse:0.1, power:1.7", ContactSpot::ellipse(0.1), PressureLaw<double>::power(1.7),
         repeat);
     run("ellipse:0.1, annulus:0.5", ContactSpot::ellipse(0.1), PressureLaw<double>::annulus(0.5),
