@@ -24,7 +24,7 @@
 //    (Hertz: m = 2, which makes the integrand analytic), so that it is bounded.
 // Each piece is halved until its singularities keep 1.3 half-lengths from its middle, by a
 // lower bound on their distance (U is analytic within the distance from c/s to the rim, found
-// by bisection), and then takes Gauss–Legendre with as many points as that distance asks for
+// by Newton's method), and then takes Gauss–Legendre with as many points as that distance asks for
 // 1e-12; parts next to rho_e stop at 1% of it and take Gauss–Legendre in t with s = sin^2(pi
 // t/2) across the part (crossing_rule: 20 points, where tanh-sinh took 51), a rim end that
 // keeps a fractional power tanh-sinh. 250-650 readings of U's table a point (0.05-0.3 ms) for
