@@ -41,11 +41,13 @@ FitRequest exact_on(const std::string& contact) {
   return r;
 }
 
-// A file for the test, removed at its end.
+// A file for the test, removed at its end, named for the test: ctest runs the tests of this
+// file in parallel processes, and one test's file removed under another failed it.
 struct TempFile {
   std::string path;
   TempFile(const std::string& name, const std::string& text)
-      : path(::testing::TempDir() + "contact_requests_" + name) {
+      : path(::testing::TempDir() + "contact_requests_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + name) {
     std::FILE* f = std::fopen(path.c_str(), "w");
     std::fputs(text.c_str(), f);
     std::fclose(f);
