@@ -299,9 +299,10 @@ class EllipseLawIntegrator {
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       const double lo = cuts[k], hi = cuts[k + 1], len = hi - lo;
       const bool rim = to_rim && hi == s1;
-      // tanh-sinh at a fractional rim, or where the law's branch point there is nearer than the
-      // piece is long.
-      const bool branch = fractional_ && (rim || 1.0 - hi < len);
+      // tanh-sinh at a fractional rim, or where the law's branch point is nearer than subdivide
+      // allows the crossing rule.
+      const bool branch =
+          (rim && !rim_smooth_) || law_radius(0.5 * (lo + hi), rim) / (0.5 * len) < kZCrossing;
       const PolynomialPiece* piece = slope_piece_at(0.5 * (lo + hi));
       for (const QuadratureNode& g : branch ? radial_rule() : crossing_rule()) {
         const double s = lo + len * g.from_left;

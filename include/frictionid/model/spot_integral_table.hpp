@@ -608,11 +608,11 @@ class SpotIntegralTable {
     const double f2 = focal_ * focal_;
     const E d = ax * ax + ay * ay - f2, root = sqrt(d * d + 4.0 * f2 * ay * ay);
     const E B2 = d >= 0.0 ? E(0.5 * (d + root)) : E(2.0 * f2 * ay * ay / (root - d));
-    const E b = sqrt(B2) / focal_;  // sinh mu
-    const E m = log1p(b + b * b / (1.0 + sqrt(1.0 + b * b)));
+    const E b = sqrt(B2) / focal_, a = sqrt(1.0 + b * b);  // sinh mu, cosh mu
+    const E m = log1p(b + b * b / (1.0 + a));
     if (!(value_of(m) <= mu_far_)) return false;
     mu = m;
-    nu = atan2(ay / b, ax / sqrt(1.0 + b * b));
+    nu = atan2(ay / b, ax / a);
     return true;
   }
 
