@@ -16,8 +16,9 @@
 // largest difference over those centres from SpotIntegrator at its fine angular rule (for a
 // table law: from the model's points, layers or strips) is printed as a check.
 //
-//   spot_speed [--repeat N] [--root DIR] [--passes-only] [--table-law-aspects]
+//   spot_speed [--repeat N] [--root DIR] [--passes-only] [--maps] [--table-law-aspects]
 //   # DIR: the repository, for data/footprint_map.csv; --passes-only: the one-pass table only;
+//   # --maps: only the two maps' rows of the first table;
 //   # --table-law-aspects: only the builds of table laws of 41 and 201 samples on ellipses of
 //   # aspect 0.1 to 4 (one build each, one thread)
 #include <algorithm>
@@ -266,7 +267,7 @@ void table_law_aspects() {
 
 int main(int argc, char** argv) {
   int repeat = 5;
-  bool passes_only = false;
+  bool passes_only = false, maps_only = false;
   std::string root = ".";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -274,6 +275,8 @@ int main(int argc, char** argv) {
       repeat = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--passes-only") {
       passes_only = true;
+    } else if (a == "--maps") {
+      maps_only = true;
     } else if (a == "--table-law-aspects") {
       table_law_aspects();
       return 0;
@@ -281,7 +284,7 @@ int main(int argc, char** argv) {
       root = argv[++i];
     } else {
       std::fprintf(stderr,
-                   "usage: spot_speed [--repeat N] [--root DIR] [--passes-only] "
+                   "usage: spot_speed [--repeat N] [--root DIR] [--passes-only] [--maps] "
                    "[--table-law-aspects]\n");
       return 2;
     }
@@ -292,6 +295,8 @@ int main(int argc, char** argv) {
         "SpotIntegrator (rays) | the build's points (strips, layers) | table - reference (of A0) "
         "|\n");
     std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  }
+  if (!passes_only && !maps_only) {
     run("ellipse:0.6, hertz", ContactSpot::ellipse(0.6), PressureLaw<double>::hertz(), repeat);
     run("rect:0.7, parabolic", ContactSpot::rect(0.7), PressureLaw<double>::parabolic(), repeat);
     run("ellipse:0.1, hertz", ContactSpot::ellipse(0.1), PressureLaw<double>::hertz(), repeat);
@@ -306,12 +311,15 @@ int main(int argc, char** argv) {
     run("ellipse:0.7, table of 41 samples", ContactSpot::ellipse(0.7), sampled_law(41), repeat);
     run("ellipse:0.7, table of 201 samples", ContactSpot::ellipse(0.7), sampled_law(201), repeat);
     run("rect:0.7, table of 201 samples", ContactSpot::rect(0.7), sampled_law(201), repeat);
+  }
+  if (!passes_only) {
     run("map, footprint 13 x 9",
         ContactSpot::pressure_map(read_map(root + "/data/footprint_map.csv")),
         PressureLaw<double>::uniform(), repeat);
     run("map, random 15 x 15", ContactSpot::pressure_map(random_map()),
         PressureLaw<double>::uniform(), repeat);
   }
+  if (maps_only) return 0;
   std::printf(
       "\n| one pass over n rows | n | integrate every row | always tabulate | the rule | the rule "
       "/ the better |\n");
