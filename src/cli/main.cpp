@@ -376,9 +376,11 @@ void add_shimmy(CLI::App& app, ShimmyRequest& o, Texts& t) {
 
 // A fit allocates and frees arrays of every row again and again (dataset copies, residuals,
 // predictions). Above glibc's mmap threshold each would come fresh from the kernel and fault in
-// page by page, a fifth of a 1e5-row fit; kept in the heap, freed blocks are reused.
+// page by page, a fifth of a 1e5-row fit; kept in the heap, freed blocks are reused. Not under
+// AddressSanitizer, whose allocator ignores mallopt and would poison the primed block's 30 MiB of
+// shadow twice, half of every start (the sanitizer stage of .ci/run starts thousands).
 void keep_large_blocks_in_the_heap() {
-#if defined(__GLIBC__)
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
   // The heap's first 240 MiB ask for transparent huge pages: one fault per 2 MiB, where 4 KiB
