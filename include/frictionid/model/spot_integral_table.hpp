@@ -59,8 +59,8 @@
 // of threads. 2,000-8,000 points for an ellipse, 8,000-23,000 for a rectangle at q = 0.4-2.5;
 // an ellipse of aspect 0.001-0.3 5,000-12,000 (the ring law up to 30,000), of aspect 4 11,000;
 // a map ~450 per grid cell
-// (degree 9, then 18: 66,000 for the 13 x 9 footprint, 2.5 s of CPU time at ~28 us a point;
-// 190,000 and 13 s for a rough random 15 x 15 grid).
+// (degree 9, then 18: 66,000 for the 13 x 9 footprint, 1.7 s of CPU time at ~14 us a point;
+// 190,000 and 10.5 s for a rough random 15 x 15 grid).
 //
 // The points. Ellipse: SpotIntegrator, whose rays are closed forms under the power laws (uniform,
 // Hertz, parabolic, power:n: 6-20 us a point); under a table law, layers of the uniform ellipse

@@ -3,7 +3,7 @@
 // (RectStripIntegrator: exact next to the corners, where the rays' default angular rule errs by
 // up to 5e-9 A0, and 3-10 times faster), except under the ring law, which has no density to
 // integrate across; a pressure map cell by cell with the y-integral in closed form
-// (MapStripIntegrator: 35-65 times faster than rays); an ellipse under a table law by layers
+// (MapStripIntegrator: 60-120 times faster than rays); an ellipse under a table law by layers
 // of the uniform ellipse (EllipseLawIntegrator on that ellipse's table, built once per aspect:
 // exact for any number of samples, 0.05-0.3 ms a point where rays cut at every sample took 39
 // ms for 41); an annulus of inner radius B on an ellipse as the uniform ellipse less the one
