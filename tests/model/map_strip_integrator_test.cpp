@@ -1,9 +1,9 @@
 // The integration of a pressure map (map_strip_integrator.hpp), with the corner sums over a window
-// around the centre of rotation and cell by cell, against the independent
-// two-dimensional oracle (spot_reference.hpp): the twelve integrals recombined into T_x, T_y and
-// M_z by docs/physics.md (9.5) with random kappa, h and h_y, on random grids with zero samples,
-// for centres of rotation inside cells, on and next to grid lines and nodes, on the map's edges
-// and corners, just outside it and far away.
+// around the centre of rotation and cell by cell, against the independent two-dimensional oracle
+// (spot_reference.hpp): the twelve integrals recombined into T_x, T_y and M_z by docs/physics.md
+// (9.5) with random kappa, h and h_y, on random grids with zero samples, for centres of rotation
+// inside cells, on and next to grid lines and nodes, on the map's edges and corners, just outside
+// it and far away.
 #include <frictionid/model/map_strip_integrator.hpp>
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Corner sums for the twelve spot integrals (spot_integrals.hpp) of a bilinear pressure map
-// (docs/physics.md §9.1). With a = x - c_x, e = y - c_y and r = sqrt(a^2 + e^2), the integrands
+// (docs/physics.md §9.3). With a = x - c_x, e = y - c_y and r = sqrt(a^2 + e^2), the integrands
 // are sigma0 {1, x, y, x y, y^2} (-e/r) and sigma0 {1, x, y, x^2, x y} (a/r); in a cell sigma0
 // is bilinear, so each is a sum of a^k e^l / r with k, l <= 4. For each (k, l), Phi_kl(a, e) with
 // d^2 Phi_kl / da de = a^k e^l / r is a polynomial in a, e and r plus polynomials times
