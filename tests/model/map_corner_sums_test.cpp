@@ -3,8 +3,8 @@
 // checked against the two-dimensional oracle in map_strip_integrator_test.cpp, and bounded by
 // 5e-12 of a cell by construction; in practice ~1e-13): on one cell with the centre in it, on its
 // edges and at its corners, and on grids of 6 to 20 lines a side with jittered lines, zero samples
-// and jumps at the rim, for centres inside cells, on grid lines and nodes and just outside the map
-// (where every cell takes its own rule).
+// and jumps at the rim, for centres inside cells, on grid lines and nodes and outside the map (up
+// to half its height, where the window ends, and beyond, where every cell takes its own rule).
 #include <frictionid/model/map_corner_sums.hpp>
 
 #include <gtest/gtest.h>
@@ -68,7 +68,7 @@ TEST(MapCornerSums, OneCellEqualsItsCellRuleTo1e12OfTheLoadWithTheCentreOnItOrIn
     const MapStripIntegrator map(m);
     const double load = 0.25 * (m.x[1] - m.x[0]) * (m.y[1] - m.y[0]) *
                         (m.sigma0[0] + m.sigma0[1] + m.sigma0[2] + m.sigma0[3]);
-    // Inside, on each edge, at each corner (and just outside, where the cell takes its own rule).
+    // Inside, on each edge, at each corner, and outside (within half its width: the window).
     const double cx[] = {u.in(m.x[0], m.x[1]), m.x[0], m.x[1], m.x[0] - 1e-9, m.x[1] + 0.3};
     const double cy[] = {u.in(m.y[0], m.y[1]), m.y[0], m.y[1], m.y[1] + 1e-9, m.y[0] - 0.2};
     for (double x : cx)
@@ -82,7 +82,7 @@ TEST(MapCornerSums, OneCellEqualsItsCellRuleTo1e12OfTheLoadWithTheCentreOnItOrIn
   std::cout << "[ worst    ] one cell, corner sums vs its rule, of the load: " << worst << "\n";
 }
 
-TEST(MapCornerSums, MatchTheCellRulesOnRandomGridsTo3e13OfTheLoad) {
+TEST(MapCornerSums, MatchTheCellRulesOnRandomGridsTo5e12OfTheLoad) {
   sc::Uniform u(29);
   double worst = 0.0;
   int windows = 0, points = 0;
@@ -112,15 +112,15 @@ TEST(MapCornerSums, MatchTheCellRulesOnRandomGridsTo3e13OfTheLoad) {
         case 3:  // next to a node
           cx = line(m.x) + u.sign() * 1e-8, cy = line(m.y) - u.sign() * 1e-11;
           break;
-        default:  // just outside
-          cx = u.in(x0, x1), cy = u.sign() > 0 ? y1 + u.in(0.0, 0.3) : y0 - u.in(0.0, 0.3);
+        default:  // outside, where the window reaches (half the grid's height) and beyond
+          cx = u.in(x0, x1), cy = u.sign() > 0 ? y1 + u.in(0.0, y1 - y0) : y0 - u.in(0.0, y1 - y0);
           break;
       }
       const std::size_t cells = map.window_cells(cx, cy);
       if (cells > 0) ++windows;
       ++points;
       const double d = difference(map(cx, cy), map.cell_by_cell(cx, cy)) / load;
-      EXPECT_LT(d, 3e-13) << "grid " << grid << " (" << nx << " x " << ny << ") at (" << cx << ", "
+      EXPECT_LT(d, 5e-12) << "grid " << grid << " (" << nx << " x " << ny << ") at (" << cx << ", "
                           << cy << "), " << cells << " cells by corner sums";
       worst = std::max(worst, d);
     }

@@ -1,12 +1,12 @@
 // The twelve spot integrals (spot_integrals.hpp) of a pressure map at one centre of rotation c
-// (docs/physics.md §9.1, §9.3). The cells within a few of c's own are summed in closed form, by
-// the corner sums of map_corner_sums.hpp, over a window as wide as their cancellation allows
-// (~(D/h)^4: up to 11 x 11 cells where c lies in a regular grid, none where it lies outside);
-// every other cell by the rules below. Both ways agree with the two-dimensional oracle of the
-// tests to 2e-13 of fN and fNR on random grids, centres on and next to grid lines and nodes
-// included. On the 13 x 9 footprint a point inside the map costs ~16 us of CPU, against ~36 us
-// cell by cell (100 x-pieces, 700 closed-form strips) and ~3 ms for the rays of SpotIntegrator
-// (experiments/README.md, "Contact spots").
+// (docs/physics.md §9.1, §9.3). The cells within kReach of their own sides from c are summed in
+// closed form, by the corner sums of map_corner_sums.hpp, as far as their cancellation allows
+// (~(D/h)^4); every other cell by the rules below. Both ways agree with the two-dimensional
+// oracle of the tests to 2e-13 of fN and fNR on random grids, centres on and next to grid lines
+// and nodes included, and with each other to 5e-12 of the load (2e-12 measured). On the 13 x 9
+// footprint a point of the table's build costs ~13 us of CPU, against ~36 us cell by cell (100
+// x-pieces, 700 closed-form strips) and ~3 ms for the rays of SpotIntegrator (experiments/
+// README.md, "Contact spots").
 //
 // Cell by cell: inside a cell sigma0 is bilinear, for fixed x linear in y, so with a = x - c_x,
 // eta = y - c_y and rho = sqrt(a^2 + eta^2)
@@ -20,7 +20,8 @@
 // cell's edges; each piece is at most as long as its distance from the nearest of them, and
 // takes the number of points that its Bernstein ellipse asks for 1e-16. A cell more than
 // kFarCells of its sides from c has an analytic integrand: a product Gauss–Legendre rule takes
-// it (the closed forms' terms would cancel there, growing like the square of the distance).
+// it, 7 x 7 points at 3 sides, 6 x 6 at 5 to 9 (the closed forms' terms would cancel there,
+// growing like the square of the distance, and their strips cost more).
 // Cells whose four samples are zero are skipped.
 #pragma once
 
@@ -75,9 +76,9 @@ class MapStripIntegrator {
   SpotIntegrals operator()(double cx, double cy) const {
     double acc[12] = {};
     const Window w = window(cx, cy);
-    if (w.cells() > 0) corner_sums(cx, cy, w, acc);
+    if (w.i1 > w.i0) corner_sums(cx, cy, w, acc);
     for (const Cell& c : cells_)
-      if (!w.holds(c)) cell(c, cx, cy, acc);
+      if (!w.holds(c.i, c.j)) cell(c, cx, cy, acc);
     return SpotIntegrals::from_channels(acc);
   }
 
@@ -102,38 +103,66 @@ class MapStripIntegrator {
     std::size_t i, j;              // its place in the grid
   };
 
-  // The window's half-width in cells. Its corner sums lose ~(D/h)^4 of the precision
-  // (map_corner_sums.hpp): they are taken where the farthest of its corners lies within kReach
-  // cells from c, counted in its smallest cell sides along x and y: on a regular grid, w =
-  // kWindow wherever c lies in it. On random grids (samples 0 or up to 1.5, side by side, lines
-  // jittered by a third) the sums then stay within 2e-13 of the load of the cells' own rules.
-  static constexpr std::size_t kWindow = 5;
+  // The window: the cells whose farthest corner lies within kReach cell sides from c, counted
+  // in that cell's own sides along x and y. A cell's corner sums lose ~(D/h)^4 of the precision
+  // (map_corner_sums.hpp); on random grids (samples 0 or up to 1.5, side by side, lines jittered
+  // by a third) they then stay within 2e-12 of the load of the cells' own rules. The test is
+  // separable: a column's share (its farthest x / its width)^2 plus a row's. No cell where c lies
+  // farther outside the grid than kOutside of its width along x or y: the channels weighted by
+  // x and y grow as |c|^2 there, and a table's tolerance is of A0 (on a one-cell map the reach
+  // alone would let the sums run 9 map widths out).
   static constexpr double kReach = 9.0;
+  static constexpr double kOutside = 0.5;
 
   struct Window {
-    std::size_t i0 = 0, i1 = 0, j0 = 0, j1 = 0;  // the grid cells [i0, i1) x [j0, j1)
-    std::size_t cells() const { return (i1 - i0) * (j1 - j0); }
-    bool holds(const Cell& c) const { return c.i >= i0 && c.i < i1 && c.j >= j0 && c.j < j1; }
+    std::vector<double> fx, fy;                  // each column's and row's share of kReach^2
+    std::size_t i0 = 0, i1 = 0, j0 = 0, j1 = 0;  // the bounding box of its cells
+    bool holds(std::size_t i, std::size_t j) const {
+      return i >= i0 && i < i1 && j >= j0 && j < j1 && fx[i] + fy[j] <= kReach * kReach;
+    }
+    std::size_t cells() const {
+      std::size_t n = 0;
+      for (std::size_t j = j0; j < j1; ++j)
+        for (std::size_t i = i0; i < i1; ++i) n += holds(i, j) ? 1 : 0;
+      return n;
+    }
   };
 
-  // The cells within w <= kWindow cells of c's, w the largest at which the corner sums keep
-  // their precision; none where even w = 1 would not, or where c lies outside the grid (the
-  // channels weighted by x and y grow as |c|^2 there, and a table's tolerance is of A0).
   Window window(double cx, double cy) const {
-    if (!(cx >= x_.front() && cx <= x_.back() && cy >= y_.front() && cy <= y_.back()))
-      return Window{};
-    const std::size_t ic = PressureMap::cell_of(x_, cx), jc = PressureMap::cell_of(y_, cy);
-    for (std::size_t w = kWindow; w >= 1; --w) {
-      Window out{ic > w ? ic - w : 0, std::min(ic + w + 1, x_.size() - 1), jc > w ? jc - w : 0,
-                 std::min(jc + w + 1, y_.size() - 1)};
-      double hx = HUGE_VAL, hy = HUGE_VAL;
-      for (std::size_t i = out.i0; i < out.i1; ++i) hx = std::min(hx, x_[i + 1] - x_[i]);
-      for (std::size_t j = out.j0; j < out.j1; ++j) hy = std::min(hy, y_[j + 1] - y_[j]);
-      const double dx = std::max(std::fabs(x_[out.i0] - cx), std::fabs(x_[out.i1] - cx)) / hx;
-      const double dy = std::max(std::fabs(y_[out.j0] - cy), std::fabs(y_[out.j1] - cy)) / hy;
-      if (dx * dx + dy * dy <= kReach * kReach) return out;
-    }
-    return Window{};
+    Window w;
+    const double wx = x_.back() - x_.front(), wy = y_.back() - y_.front();
+    const double gx = std::max({0.0, x_.front() - cx, cx - x_.back()});
+    const double gy = std::max({0.0, y_.front() - cy, cy - y_.back()});
+    if (!(gx <= kOutside * wx && gy <= kOutside * wy)) return w;
+    auto shares = [](const std::vector<double>& g, double c) {
+      std::vector<double> f(g.size() - 1);
+      for (std::size_t i = 0; i + 1 < g.size(); ++i) {
+        const double d = std::max(std::fabs(g[i] - c), std::fabs(g[i + 1] - c)) / (g[i + 1] - g[i]);
+        f[i] = d * d;
+      }
+      return f;
+    };
+    w.fx = shares(x_, cx);
+    w.fy = shares(y_, cy);
+    const double R2 = kReach * kReach;
+    const double min_x = *std::min_element(w.fx.begin(), w.fx.end());
+    const double min_y = *std::min_element(w.fy.begin(), w.fy.end());
+    // The shares fall towards c and rise away from it: the columns and rows that any cell
+    // takes form one run each.
+    auto run = [R2](const std::vector<double>& f, double other, std::size_t& lo, std::size_t& hi) {
+      lo = f.size();
+      hi = 0;
+      for (std::size_t i = 0; i < f.size(); ++i)
+        if (f[i] + other <= R2) {
+          lo = std::min(lo, i);
+          hi = i + 1;
+        }
+      if (lo >= hi) lo = hi = 0;
+    };
+    run(w.fx, min_y, w.i0, w.i1);
+    run(w.fy, min_x, w.j0, w.j1);
+    if (w.i0 == w.i1 || w.j0 == w.j1) w.i0 = w.i1 = w.j0 = w.j1 = 0;
+    return w;
   }
 
   // Corner sums over the window's nonzero cells, node by node.
@@ -148,11 +177,10 @@ class MapStripIntegrator {
         for (int dy = 0; dy < 2; ++dy)
           for (int dx = 0; dx < 2; ++dx) {
             // The cell whose corner (1 - dx, 1 - dy) is this node.
-            if ((dx == 0 && i == i0) || (dx == 1 && i == i1) || (dy == 0 && j == j0) ||
-                (dy == 1 && j == j1))
-              continue;
+            if ((dx == 0 && i == 0) || (dy == 0 && j == 0)) continue;
             const std::size_t ci = i + static_cast<std::size_t>(dx) - 1;
             const std::size_t cj = j + static_cast<std::size_t>(dy) - 1;
+            if (!w.holds(ci, cj)) continue;
             const int k = index_[cj * nx + ci];
             if (k < 0) continue;
             const Corner& q = cells_[static_cast<std::size_t>(k)].corner[(1 - dy) * 2 + (1 - dx)];
@@ -179,10 +207,10 @@ class MapStripIntegrator {
       near_cell(c, cx, cy, gx, gy, acc);
   }
 
-  static constexpr double kFarCells = 10.0;  // a cell this many sides away: product rule
-  static constexpr double kFloor = 1e-7;     // the first piece at a true singularity / cell width
-  static constexpr double kLog = 26.0;       // -ln of a cell's error bound (5e-12 of it)
-  static constexpr double kGrowth = 2.0;     // a graded piece's length / its distance from c
+  static constexpr double kFarCells = 3.0;  // a cell this many sides away: product rule
+  static constexpr double kFloor = 1e-7;    // the first piece at a true singularity / cell width
+  static constexpr double kLog = 26.0;      // -ln of a cell's error bound (5e-12 of it)
+  static constexpr double kGrowth = 2.0;    // a graded piece's length / its distance from c
   static constexpr int kFloorPoints = 8;
   // A singularity within kSingular kNearEnd of a piece's end: the piece's first kNearEnd by
   // tanh-sinh, which errs by ~exp(-2 pi w/h) of the singularity's share, w ~ (pi/2)/ln(width/
@@ -211,12 +239,32 @@ class MapStripIntegrator {
     return n < kMaxPoints ? std::max(least, static_cast<int>(n)) : kMaxPoints;
   }
 
+  // Points for a side of length h of a cell `gap` from c: the singularities of either inner
+  // integrand lie at least gap from the side in the complex plane, and of the Bernstein ellipses
+  // that keep that distance the narrowest is the one through the point gap off the side's
+  // middle, with ln rho = asinh(2 gap / h). So n points suffice from the d = 2 gap / h at
+  // which kLog / ln rho = 2n - 3 (points_for_rho): the thresholds sinh(kLog / (2n - 3)), found
+  // once (the Bernstein parameter by two hypots at every cell and point took a sixth of a
+  // map's build).
+  static int far_points(double gap, double h) {
+    static const std::array<double, kMaxPoints + 1> threshold = [] {
+      std::array<double, kMaxPoints + 1> t{};
+      for (int n = 2; n <= kMaxPoints; ++n)
+        t[static_cast<std::size_t>(n)] = std::sinh(kLog / (2.0 * n - 3.0));
+      return t;
+    }();
+    const double d = 2.0 * gap / h;
+    int n = 2;
+    while (n < kMaxPoints && d < threshold[static_cast<std::size_t>(n)]) ++n;
+    return n;
+  }
+
   // A cell far from c: sigma0 {1, x, y} times the analytic direction field, by a product rule
   // (degree 3 of the polynomial part in each variable, hence at least 2 points).
   void far_cell(const Cell& c, double cx, double cy, double gap, double* acc) const {
     const double hx = c.x1 - c.x0, hy = c.y1 - c.y0;
-    const std::vector<QuadratureNode>& rx = gauss_legendre_rule(points_for(gap, hx, 2));
-    const std::vector<QuadratureNode>& ry = gauss_legendre_rule(points_for(gap, hy, 2));
+    const std::vector<QuadratureNode>& rx = gauss_legendre_rule(far_points(gap, hx));
+    const std::vector<QuadratureNode>& ry = gauss_legendre_rule(far_points(gap, hy));
     for (const QuadratureNode& gx : rx) {
       const double x = c.x0 + hx * gx.from_left, a = x - cx;
       const double lo = c.s[0] * gx.from_right + c.s[1] * gx.from_left;
