@@ -265,22 +265,35 @@ class MapStripIntegrator {
     const double hx = c.x1 - c.x0, hy = c.y1 - c.y0;
     const std::vector<QuadratureNode>& rx = gauss_legendre_rule(far_points(gap, hx));
     const std::vector<QuadratureNode>& ry = gauss_legendre_rule(far_points(gap, hy));
+    // What the y-nodes share across the x-nodes: eta, its weights towards y0 and y1, eta y and
+    // eta y^2, y.
+    const std::size_t n = ry.size();
+    double eta[kMaxPoints], w0[kMaxPoints], w1[kMaxPoints], ey[kMaxPoints], eyy[kMaxPoints],
+        ys[kMaxPoints];
+    for (std::size_t k = 0; k < n; ++k) {
+      const QuadratureNode& gy = ry[k];
+      const double y = c.y0 + hy * gy.from_left;
+      eta[k] = y - cy;
+      w0[k] = gy.weight * gy.from_right;
+      w1[k] = gy.weight * gy.from_left;
+      ys[k] = y;
+      ey[k] = eta[k] * y;
+      eyy[k] = ey[k] * y;
+    }
     for (const QuadratureNode& gx : rx) {
       const double x = c.x0 + hx * gx.from_left, a = x - cx;
       const double lo = c.s[0] * gx.from_right + c.s[1] * gx.from_left;
       const double hi = c.s[2] * gx.from_right + c.s[3] * gx.from_left;
-      double e0 = 0.0, e1 = 0.0, e2 = 0.0, f0 = 0.0, f1 = 0.0;  // ∫{1,y,y^2} e_x, ∫{1,y} e_y
-      for (const QuadratureNode& gy : ry) {
-        const double y = c.y0 + hy * gy.from_left, eta = y - cy;
-        const double w =
-            gy.weight * (lo * gy.from_right + hi * gy.from_left) / std::sqrt(a * a + eta * eta);
-        e0 -= w * eta;
-        e1 -= w * eta * y;
-        e2 -= w * eta * y * y;
-        f0 += w * a;
-        f1 += w * a * y;
+      double e0 = 0.0, e1 = 0.0, e2 = 0.0, f0 = 0.0, f1 = 0.0;  // ∫{1,y,y^2} e_x, ∫{1,y} e_y / a
+      for (std::size_t k = 0; k < n; ++k) {
+        const double w = (lo * w0[k] + hi * w1[k]) / std::sqrt(a * a + eta[k] * eta[k]);
+        e0 -= w * eta[k];
+        e1 -= w * ey[k];
+        e2 -= w * eyy[k];
+        f0 += w;
+        f1 += w * ys[k];
       }
-      add(acc, gx.weight * hx * hy, x, e0, e1, e2, f0, f1);
+      add(acc, gx.weight * hx * hy, x, e0, e1, e2, f0 * a, f1 * a);
     }
   }
 
