@@ -4,7 +4,7 @@
 // (~(D/h)^4); every other cell by the rules below. Both ways agree with the two-dimensional
 // oracle of the tests to 2e-13 of fN and fNR on random grids, centres on and next to grid lines
 // and nodes included, and with each other to 5e-12 of the load (2e-12 measured). On the 13 x 9
-// footprint a point of the table's build costs ~13 us of CPU, against ~36 us cell by cell (100
+// footprint a point of the table's build costs ~7 us of CPU, against ~36 us cell by cell (100
 // x-pieces, 700 closed-form strips) and ~3 ms for the rays of SpotIntegrator (experiments/
 // README.md, "Contact spots").
 //
