@@ -85,7 +85,7 @@ TEST(MapCornerSums, OneCellEqualsItsCellRuleTo1e12OfTheLoadWithTheCentreOnItOrIn
 TEST(MapCornerSums, MatchTheCellRulesOnRandomGridsTo5e12OfTheLoad) {
   sc::Uniform u(29);
   double worst = 0.0;
-  int windows = 0, points = 0;
+  int windows = 0, points = 0, outside = 0;
   for (int grid = 0; grid < 12; ++grid) {
     const std::size_t nx = 6 + u.index(15), ny = 6 + u.index(15);
     const PressureMap m = random_map(u, nx, ny, grid % 2 == 0);
@@ -118,6 +118,7 @@ TEST(MapCornerSums, MatchTheCellRulesOnRandomGridsTo5e12OfTheLoad) {
       }
       const std::size_t cells = map.window_cells(cx, cy);
       if (cells > 0) ++windows;
+      if (cells > 0 && (cy > y1 || cy < y0)) ++outside;
       ++points;
       const double d = difference(map(cx, cy), map.cell_by_cell(cx, cy)) / load;
       EXPECT_LT(d, 5e-12) << "grid " << grid << " (" << nx << " x " << ny << ") at (" << cx << ", "
@@ -125,10 +126,12 @@ TEST(MapCornerSums, MatchTheCellRulesOnRandomGridsTo5e12OfTheLoad) {
       worst = std::max(worst, d);
     }
   }
-  // The centres inside the grid (four in five) have a window: the sums were exercised.
+  // The centres inside the grid (four in five) have a window, and so do some outside it: the
+  // sums were exercised there.
   EXPECT_GT(windows, points / 2);
+  EXPECT_GT(outside, 10);
   std::cout << "[ worst    ] corner sums vs cell rules, of the load: " << worst << " (" << windows
-            << " of " << points << " centres with a window)\n";
+            << " of " << points << " centres with a window, " << outside << " outside the grid)\n";
 }
 
 }  // namespace

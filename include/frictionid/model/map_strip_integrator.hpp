@@ -147,8 +147,8 @@ class MapStripIntegrator {
     const double R2 = kReach * kReach;
     const double min_x = *std::min_element(w.fx.begin(), w.fx.end());
     const double min_y = *std::min_element(w.fy.begin(), w.fy.end());
-    // The shares fall towards c and rise away from it: the columns and rows that any cell
-    // takes form one run each.
+    // The bounding box of its cells: the columns whose share leaves room for the smallest row's,
+    // and the rows likewise.
     auto run = [R2](const std::vector<double>& f, double other, std::size_t& lo, std::size_t& hi) {
       lo = f.size();
       hi = 0;
