@@ -302,6 +302,50 @@ TEST(SpotIntegralTable, ElongatedEllipsesStayExactInFewPoints) {
     }
 }
 
+// A table law's points come from layers of the uniform ellipse read along c/s. Below aspect 0.3
+// that table reaches beyond the rim in polar coordinates (uniform_for_layers), where the table
+// law's own table and the rows integrated one by one take confocal ones: both against the rays.
+TEST(SpotIntegralTable, ATableLawOnAnElongatedEllipseMatchesTheIntegrator) {
+  const testing::spot_cases::LawCase table = testing::spot_cases::kinked_step_table();
+  for (double q : {0.2, 0.08}) {
+    const ContactSpot spot = ContactSpot::ellipse(q);
+    const SpotIntegralTable& t = table_for(spot, {table.name, table.law});
+    const auto centres = sample_centres(SpotKind::Ellipse, q, 90, 37);
+    const Worst w = compare(t, Reference(spot, table.law, q), centres, area(spot, table.law, q));
+    EXPECT_LT(w.error, kTolerance)
+        << "q " << q << ": channel " << w.channel << " at (" << w.cx << ", " << w.cy << ")";
+  }
+}
+
+// The layers' uniform ellipse (polar beyond the rim down to aspect 0.05) is as exact as the
+// confocal one, and its rays read it at c/s beyond the rim too, by the slices of the polar patch.
+TEST(SpotIntegralTable, TheLayersUniformEllipseIsExactAndItsRaysReadIt) {
+  for (double q : {0.1, 0.03}) {
+    const auto uniform = SpotIntegralTable::uniform_for_layers(q, {}, spot_threads(0));
+    const ContactSpot spot = ContactSpot::ellipse(q);
+    const PressureLaw<double> law = PressureLaw<double>::uniform();
+    const double A0 = area(spot, law, q);
+    const Worst w = compare(*uniform, Reference(spot, law, q),
+                            sample_centres(SpotKind::Ellipse, q, 120, 43), A0);
+    EXPECT_LT(w.error, kTolerance)
+        << "q " << q << ": channel " << w.channel << " at (" << w.cx << ", " << w.cy << ")";
+    Uniform u(47);
+    double worst = 0.0;
+    for (int i = 0; i < 40; ++i) {
+      const double cx = u.in(-2.0, 2.0), cy = q * u.in(-2.0, 2.0);
+      const SpotIntegralTable::Ray ray = uniform->ray(cx, cy);
+      for (int k = 0; k < 30; ++k) {
+        const double s = std::pow(10.0, u.in(-3.0, 0.3));
+        const auto got = ray(s);
+        const auto want = uniform->channels_at(cx / s, cy / s);
+        for (std::size_t j = 0; j < 12; ++j)
+          worst = std::max(worst, std::fabs(got[j] - want[j]) / A0);
+      }
+    }
+    EXPECT_LT(worst, 1e-14) << "q " << q;
+  }
+}
+
 // Read with dual numbers (a fit's derivatives along c), the confocal patch's coordinates carry
 // the derivatives of the interpolant: against central differences of the table itself.
 TEST(SpotIntegralTable, ConfocalCoordinatesCarryTheDerivativesAlongTheCentre) {

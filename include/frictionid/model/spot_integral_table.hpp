@@ -184,13 +184,30 @@ class SpotIntegralTable {
                     std::size_t max_points = kMaxPoints)
       : SpotIntegralTable(spot, law, q, stop, parallel, 1.0, max_points) {}
 
+  // The unit uniform ellipse of aspect q as a table law's table reads it for its points
+  // (EllipseLawIntegrator: along rays c/s, ~500 readings a point). Down to aspect kPolarLayers
+  // its polar patch reaches beyond the rim as it does for q >= kConfocal, where the confocal
+  // patch would make every reading there a full 2-D series (the confocal angle changes along a
+  // ray): at q = 0.1 it takes 31,000 points where the confocal one takes 5,400, and a table law
+  // of 41 samples then builds 1.6 times faster (1.6 at q = 0.05, 1.75 at 0.2), with the same
+  // points. Rows integrated one by one (SpotPointIntegrator) keep the confocal table, which is
+  // cheaper to build than the readings it saves on a few thousand rows.
+  static std::shared_ptr<const SpotIntegralTable> uniform_for_layers(
+      double q, const std::function<bool()>& stop, const SpotParallelFor& parallel,
+      std::size_t max_points = kMaxPoints) {
+    return std::shared_ptr<const SpotIntegralTable>(
+        new SpotIntegralTable(ContactSpot::ellipse(q), PressureLaw<double>::uniform(), q, stop,
+                              parallel, 1.0, max_points, q >= kPolarLayers));
+  }
+
  private:
   // The same with every tolerance `tighter` times its own (a table that others take
-  // differences of).
+  // differences of), and, `polar`, no confocal patch (uniform_for_layers).
   SpotIntegralTable(const ContactSpot& spot, const PressureLaw<double>& law, double q,
                     const std::function<bool()>& stop, const SpotParallelFor& parallel,
-                    double tighter, std::size_t max_points)
-      : kind_(spot.kind == SpotKind::Map    ? SpotKind::Map
+                    double tighter, std::size_t max_points, bool polar = false)
+      : polar_(polar),
+        kind_(spot.kind == SpotKind::Map    ? SpotKind::Map
               : spot.kind == SpotKind::Rect ? SpotKind::Rect
                                             : SpotKind::Ellipse),
         law_(law),
@@ -236,8 +253,7 @@ class SpotIntegralTable {
     // A table law on an ellipse: its points from the uniform ellipse's table, layer by layer.
     std::optional<EllipseLawIntegrator<SpotIntegralTable>> layers;
     if (kind_ == SpotKind::Ellipse && law.kind == PressureKind::Table) {
-      auto uniform = std::make_shared<const SpotIntegralTable>(
-          ContactSpot::ellipse(q_), PressureLaw<double>::uniform(), q_, stop, parallel);
+      auto uniform = uniform_for_layers(q_, stop, parallel);
       stats_.layer_points = uniform->stats().points;
       layers.emplace(std::move(uniform), law, q_);
     }
@@ -432,6 +448,7 @@ class SpotIntegralTable {
   static constexpr double kCornerAngle = M_PI / 4;  // graded angle next to a line's direction
   static constexpr double kSqueeze = 0.3;   // grade the reference angle when atanh(q) is smaller
   static constexpr double kConfocal = 0.3;  // outside an ellipse of aspect below: confocal patch
+  static constexpr double kPolarLayers = 0.05;  // but for layers, down to this aspect
   static constexpr std::size_t kMaxGradedBreaks = 8;
 
   // Which channels change sign with c_x and with c_y.
@@ -848,7 +865,7 @@ class SpotIntegralTable {
     if (kind_ == SpotKind::Ellipse) {
       // The polar patch reaches every point nearer than R_near; on an elongated ellipse only
       // the spot itself, and the confocal patch the rest (below).
-      confocal_ = q_ < kConfocal;
+      confocal_ = q_ < kConfocal && !polar_;
       near_ = confocal_ ? 1.0 : far / std::min(1.0, q_);
       add_patch(Patch(Coords::Polar),
                 axis_cells(0.0, near_, lines, std::vector<double>(lines.size(), kGraded), power),
@@ -1384,6 +1401,7 @@ class SpotIntegralTable {
     leaves_.push_back(std::move(leaf));
   }
 
+  bool polar_ = false;  // no confocal patch: a table law's layers read this table
   SpotKind kind_;
   PressureLaw<double> law_;
   double q_;
