@@ -159,9 +159,8 @@ class MapStripIntegrator {
         }
       if (lo >= hi) lo = hi = 0;
     };
-    run(w.fx, min_y, w.i0, w.i1);
-    run(w.fy, min_x, w.j0, w.j1);
-    if (w.i0 == w.i1 || w.j0 == w.j1) w.i0 = w.i1 = w.j0 = w.j1 = 0;
+    run(w.fx, min_y, w.i0, w.i1);  // (a column runs with the smallest row and so that row with
+    run(w.fy, min_x, w.j0, w.j1);  // the smallest column: both empty or neither)
     return w;
   }
 
@@ -220,15 +219,9 @@ class MapStripIntegrator {
   static constexpr double kSingular = 0.01;  // a ln|a| over a piece 1e-7 wide: ~1e-20 of the cell
   static constexpr int kMaxPoints = 24;
 
-  // Points for an interval whose nearest singularity lies `distance` from it, at `length`: the
-  // Bernstein ellipse through a point that far beyond an end has parameter z + sqrt(z^2 - 1),
-  // and the analytic factor is multiplied by a cubic (sigma0 times x^2), which the rule's degree
-  // 2n - 1 must carry too.
-  static int points_for(double distance, double length, int least) {
-    const double z = 1.0 + 2.0 * distance / length;
-    return points_for_rho(bernstein_parameter(z), least);
-  }
-  // The same for a singularity at (re, im) from the start of a piece of that length.
+  // Points for a piece of that length whose nearest singularity lies at (re, im) from its start:
+  // the Bernstein ellipse through it, and the analytic factor is multiplied by a cubic (sigma0
+  // times x^2), which the rule's degree 2n - 1 must carry too.
   static int points_for(double re, double im, double length, int least) {
     const double zr = (2.0 * re - length) / length, zi = 2.0 * im / length;
     return points_for_rho(bernstein_parameter_through(zr, zi), least);

@@ -193,11 +193,10 @@ class SpotIntegralTable {
   // points. Rows integrated one by one (SpotPointIntegrator) keep the confocal table, which is
   // cheaper to build than the readings it saves on a few thousand rows.
   static std::shared_ptr<const SpotIntegralTable> uniform_for_layers(
-      double q, const std::function<bool()>& stop, const SpotParallelFor& parallel,
-      std::size_t max_points = kMaxPoints) {
+      double q, const std::function<bool()>& stop, const SpotParallelFor& parallel) {
     return std::shared_ptr<const SpotIntegralTable>(
         new SpotIntegralTable(ContactSpot::ellipse(q), PressureLaw<double>::uniform(), q, stop,
-                              parallel, 1.0, max_points, q >= kPolarLayers));
+                              parallel, 1.0, kMaxPoints, q >= kPolarLayers));
   }
 
  private:
