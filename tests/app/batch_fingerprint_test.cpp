@@ -14,7 +14,7 @@
 #include "io/sha256.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace frictionid::app {
+namespace frictionid::app::batch_fingerprint_test {
 namespace {
 
 std::string rows_text(double scale) {
@@ -51,4 +51,4 @@ TEST(BatchFingerprint, AFitRecordsTheBytesItReadNotTheBytesPlanned) {
 }
 
 }  // namespace
-}  // namespace frictionid::app
+}  // namespace frictionid::app::batch_fingerprint_test

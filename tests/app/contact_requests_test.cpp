@@ -16,7 +16,7 @@
 #include "app/request_text.hpp"
 #include "app/requests.hpp"
 
-namespace frictionid::app {
+namespace frictionid::app::contact_requests_test {
 namespace {
 
 std::string message_of(const std::function<void()>& f) {
@@ -262,4 +262,4 @@ TEST(ContactCoefficients, AnEllipseOfAspectOneHasTheCirclesCoefficients) {
 }
 
 }  // namespace
-}  // namespace frictionid::app
+}  // namespace frictionid::app::contact_requests_test

@@ -12,7 +12,7 @@
 #include "app/option_parsers.hpp"
 #include "app/request_json.hpp"
 
-namespace frictionid::app {
+namespace frictionid::app::data_input_test {
 namespace {
 
 // Two rows of a wheel-form dataset; the second wheel stands still when `standing`.
@@ -115,4 +115,4 @@ TEST(DataInput, ColumnMapsTakeWheelFormNames) {
 }
 
 }  // namespace
-}  // namespace frictionid::app
+}  // namespace frictionid::app::data_input_test

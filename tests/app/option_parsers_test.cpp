@@ -14,7 +14,7 @@
 
 #include <frictionid/io/input_error.hpp>
 
-namespace frictionid {
+namespace frictionid::option_parsers_test {
 namespace {
 
 // The InputError thrown by `f`, or a test failure when it returns normally.
@@ -279,9 +279,9 @@ TEST(ParseColumnMap, MalformedEntriesRejected) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::option_parsers_test
 
-namespace frictionid {
+namespace frictionid::option_parsers_test {
 namespace {
 
 TEST(WholeNumbers, NegativesAreRejectedNotWrapped) {
@@ -315,9 +315,9 @@ TEST(WholeNumbers, TheRangeEndsAreIncluded) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::option_parsers_test
 
-namespace frictionid {
+namespace frictionid::option_parsers_test {
 namespace {
 
 // --- parse_contact_option (--contact SPOT) ---
@@ -375,9 +375,9 @@ TEST(ParseContactList, ReadsCompareSpotsInOrderAndRejectsRepeats) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::option_parsers_test
 
-namespace frictionid {
+namespace frictionid::option_parsers_test {
 namespace {
 
 // A file is read in one form: a native column may be mapped to a header that is also a
@@ -391,4 +391,4 @@ TEST(ParseColumnMap, ANativeColumnMayTakeAHeaderThatIsAWheelFormName) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::option_parsers_test

@@ -14,7 +14,7 @@
 #include "app/request_json.hpp"
 #include "app/request_text.hpp"
 
-namespace frictionid::app {
+namespace frictionid::app::requests_test {
 namespace {
 
 // Every field of the settings that a request can change.
@@ -146,4 +146,4 @@ TEST(RequestText, SharedNamesRejectAnEmptyName) {
 }
 
 }  // namespace
-}  // namespace frictionid::app
+}  // namespace frictionid::app::requests_test

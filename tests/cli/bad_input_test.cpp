@@ -29,6 +29,7 @@
 #include "support/scratch_dir.hpp"
 #include "support/without_traceability.hpp"
 
+namespace bad_input_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -626,3 +627,4 @@ TEST(BadInput, EquivalentSpellingsOfOneDatasetGiveByteIdenticalReports) {
 }
 
 }  // namespace
+}  // namespace bad_input_test

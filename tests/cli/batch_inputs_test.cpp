@@ -17,6 +17,7 @@
 #include "support/run_command.hpp"
 #include "support/scratch_dir.hpp"
 
+namespace batch_inputs_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -171,3 +172,4 @@ TEST(BadInputLarge, ASparseGigabyteInputFailsItsRunWithTheReadersMessageInBounde
 }
 
 }  // namespace
+}  // namespace batch_inputs_test

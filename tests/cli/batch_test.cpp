@@ -26,6 +26,7 @@
 #include "support/scratch_dir.hpp"
 #include "support/without_traceability.hpp"
 
+namespace batch_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -554,3 +555,4 @@ TEST(Batch, BadInputsExitWithCodeTwoAndSayWhatIsWrong) {
 }
 
 }  // namespace
+}  // namespace batch_test

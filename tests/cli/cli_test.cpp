@@ -16,6 +16,7 @@
 #include <string>
 #include "support/run_command.hpp"
 
+namespace cli_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -232,3 +233,4 @@ TEST(Cli, AnOutlierRowIsNamedInTheReport) {
 }
 
 }  // namespace
+}  // namespace cli_test

@@ -21,6 +21,7 @@
 #include "support/scratch_dir.hpp"
 #include "support/without_traceability.hpp"
 
+namespace contact_spot_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -377,3 +378,4 @@ TEST(ContactSpotCli, ABadMapFileIsNamedAtItsLineAndColumnAndNothingIsWritten) {
 }
 
 }  // namespace
+}  // namespace contact_spot_test

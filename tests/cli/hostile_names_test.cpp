@@ -13,6 +13,7 @@
 #include "support/scratch_dir.hpp"
 #include "support/xml_well_formed.hpp"
 
+namespace hostile_names_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -213,3 +214,4 @@ TEST(BoundedMessages, AHeaderOfAMillionNamesGivesAMessageOfAFewHundredBytes) {
 }
 
 }  // namespace
+}  // namespace hostile_names_test

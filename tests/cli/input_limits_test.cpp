@@ -18,6 +18,7 @@
 #include "support/run_command.hpp"
 #include "support/scratch_dir.hpp"
 
+namespace input_limits_test {
 namespace {
 
 TEST(InputLimits, APressureTableWithoutEndIsRejectedAtTheSizeLimit) {
@@ -100,3 +101,4 @@ TEST(InputLimits, ASignalDuringAFitWithALargePressureTableActsWithinASecond) {
 }
 
 }  // namespace
+}  // namespace input_limits_test

@@ -13,6 +13,7 @@
 #include "support/memory_cap.hpp"
 #include "support/run_command.hpp"
 
+namespace integer_options_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -89,3 +90,4 @@ TEST_F(IntegerOptions, ANegativeGlobalSubsampleIsRejected) {
 }
 
 }  // namespace
+}  // namespace integer_options_test

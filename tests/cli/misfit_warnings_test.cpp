@@ -9,6 +9,7 @@
 #include "support/run_command.hpp"
 #include "support/scratch_dir.hpp"
 
+namespace misfit_warnings_test {
 namespace {
 
 using frictionid::test::read_file;
@@ -78,3 +79,4 @@ TEST(MisfitWarnings, MostRowsBeyondSixSigmaAreAMisfitNotOutliers) {
 }
 
 }  // namespace
+}  // namespace misfit_warnings_test

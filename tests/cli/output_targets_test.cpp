@@ -16,6 +16,7 @@
 #include <string>
 #include "support/scratch_dir.hpp"
 
+namespace output_targets_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -102,3 +103,4 @@ TEST_F(OutputTargets, ASymlinkKeepsItsLinkAndItsTargetGetsTheRows) {
 }
 
 }  // namespace
+}  // namespace output_targets_test

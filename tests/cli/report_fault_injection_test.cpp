@@ -29,6 +29,7 @@
 #include <vector>
 #include "support/scratch_dir.hpp"
 
+namespace report_fault_injection_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -357,3 +358,4 @@ TEST_F(ReportFaults, AFullTmpfsKeepsTheEarlierReport) {
 }
 
 }  // namespace
+}  // namespace report_fault_injection_test

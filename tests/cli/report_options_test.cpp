@@ -11,6 +11,7 @@
 #include <string>
 #include "support/run_command.hpp"
 
+namespace report_options_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -85,3 +86,4 @@ TEST_F(ReportOptions, EvalCarriesExtraColumnsIntoThePredictions) {
 }
 
 }  // namespace
+}  // namespace report_options_test

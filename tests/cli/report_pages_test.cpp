@@ -24,6 +24,7 @@
 #include "support/run_command.hpp"
 #include "support/scratch_dir.hpp"
 
+namespace report_pages_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -254,3 +255,4 @@ TEST_F(ReportPages, EachParameterRowNamesItsIntervalMethod) {
 }
 
 }  // namespace
+}  // namespace report_pages_test

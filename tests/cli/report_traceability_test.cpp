@@ -15,6 +15,7 @@
 #include "io/file_fingerprint.hpp"
 #include "support/run_command.hpp"
 
+namespace report_traceability_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -126,3 +127,4 @@ TEST_F(ReportTraceability, CompareAndBatchPagesNameTheirInputsAndCommand) {
 }
 
 }  // namespace
+}  // namespace report_traceability_test

@@ -21,6 +21,7 @@
 #include <vector>
 #include "support/scratch_dir.hpp"
 
+namespace report_transaction_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -224,3 +225,4 @@ TEST(ReportSignals, CtrlCAtAnyInstantEndsWith130AndKeepsTheEarlierReportOrFinish
 }
 
 }  // namespace
+}  // namespace report_transaction_test

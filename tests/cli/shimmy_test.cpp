@@ -16,6 +16,7 @@
 
 #include "support/run_command.hpp"
 
+namespace shimmy_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -220,3 +221,4 @@ TEST(CliShimmy, BadInputExitsWithCodeTwoOneLineAndWritesNothing) {
 }
 
 }  // namespace
+}  // namespace shimmy_test

@@ -15,6 +15,7 @@
 
 #include "support/run_command.hpp"
 
+namespace simulate_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -97,3 +98,4 @@ TEST(CliSimulate, ASpeedWhoseEnergyOverflowsIsExitTwoWithTheTrueReason) {
 }
 
 }  // namespace
+}  // namespace simulate_test

@@ -12,6 +12,7 @@
 
 #include "support/run_command.hpp"
 
+namespace start_and_bounds_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -81,3 +82,4 @@ TEST_F(StartAndBounds, ParamInsideTheBoundsWithNoGlobalIsTheReportedStart) {
 }
 
 }  // namespace
+}  // namespace start_and_bounds_test

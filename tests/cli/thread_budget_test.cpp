@@ -17,6 +17,7 @@
 #include "support/run_command.hpp"
 #include "support/scratch_dir.hpp"
 
+namespace thread_budget_test {
 namespace {
 
 using frictionid::test::ScratchDir;
@@ -70,3 +71,4 @@ TEST(ThreadBudget, ABatchWithJobsTwoAndThreadsTwoNeverRunsMoreThanTwoThreads) {
 }
 
 }  // namespace
+}  // namespace thread_budget_test

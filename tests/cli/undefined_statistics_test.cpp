@@ -9,6 +9,7 @@
 #include "support/run_command.hpp"
 #include "support/scratch_dir.hpp"
 
+namespace undefined_statistics_test {
 namespace {
 
 using frictionid::test::read_file;
@@ -107,3 +108,4 @@ TEST(UndefinedStatistics, SigmaColumnsThatWeighNothingAreAnErrorNamingThem) {
 }
 
 }  // namespace
+}  // namespace undefined_statistics_test

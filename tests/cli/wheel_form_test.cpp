@@ -18,6 +18,7 @@
 #include "support/run_command.hpp"
 #include "support/scratch_dir.hpp"
 
+namespace wheel_form_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -266,3 +267,4 @@ TEST(WheelFormCli, BatchGroupsWheelFormRowsByAColumn) {
 }
 
 }  // namespace
+}  // namespace wheel_form_test

@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-namespace frictionid {
+namespace frictionid::dataset_test {
 namespace {
 
 Dataset numbered(std::size_t rows) {
@@ -54,4 +54,4 @@ TEST(DatasetSubsample, RejectsZeroRowsInsteadOfDividingByZero) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::dataset_test

@@ -9,7 +9,7 @@
 #include <frictionid/fitter.hpp>
 #include <frictionid/synthetic_data.hpp>
 
-namespace frictionid {
+namespace frictionid::fit_settings_test {
 namespace {
 
 using Law = model::PressureLaw<double>;
@@ -162,4 +162,4 @@ TEST(FitSettings, NoiseModelNamesRoundTripAndUnknownNamesAreRejected) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::fit_settings_test

@@ -16,7 +16,7 @@
 
 #include "identify/statistics.hpp"
 
-namespace frictionid {
+namespace frictionid::fit_statistics_test {
 namespace {
 
 using Law = model::PressureLaw<double>;
@@ -247,9 +247,9 @@ TEST(Covariance, OnTooFewRowsWithSigmaColumnsOnEveryChannelIsNotRescaled) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::fit_statistics_test
 
-namespace frictionid {
+namespace frictionid::fit_statistics_test {
 namespace {
 
 FitResult fit_exact_rows(std::size_t rows, bool sigma_columns) {
@@ -315,4 +315,4 @@ TEST(IntervalDof, TooFewRowsPerChannelPoolOneSigma) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::fit_statistics_test

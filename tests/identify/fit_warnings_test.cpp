@@ -16,7 +16,7 @@
 #include <frictionid/model_variant.hpp>
 #include <frictionid/synthetic_data.hpp>
 
-namespace frictionid {
+namespace frictionid::fit_warnings_test {
 namespace {
 
 bool has_warning(const FitResult& r, const std::string& phrase) {
@@ -313,4 +313,4 @@ TEST(SandwichCheck, FiresUnderAWrongNoiseModelAndNotUnderTheRightOne) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::fit_warnings_test

@@ -8,7 +8,7 @@
 #include <frictionid/synthetic_data.hpp>
 #include "support/matched_digits.hpp"
 
-namespace frictionid {
+namespace frictionid::fitter_test {
 namespace {
 
 using Law = model::PressureLaw<double>;
@@ -353,4 +353,4 @@ TEST(Fitter, AFitOnTheCircleNamesItsContactCircle) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::fitter_test

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace frictionid {
+namespace frictionid::global_search_test {
 namespace {
 
 // Two basins: a shallow one near (-2, -2) and the global minimum 0 at (1.5, 0.5).
@@ -67,4 +67,4 @@ TEST(GlobalSearch, ANloptFailureIsReportedNotThrown) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::global_search_test

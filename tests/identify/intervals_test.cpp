@@ -13,7 +13,7 @@
 
 #include "identify/statistics.hpp"
 
-namespace frictionid {
+namespace frictionid::intervals_test {
 namespace {
 
 using Law = model::PressureLaw<double>;
@@ -205,4 +205,4 @@ TEST(Covariance, OfAProblemLinearInItsParameterMatchesTheClosedForm) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::intervals_test

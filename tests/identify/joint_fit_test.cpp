@@ -13,7 +13,7 @@
 #include "identify/joint_stage.hpp"
 #include "support/matched_digits.hpp"
 
-namespace frictionid {
+namespace frictionid::joint_fit_test {
 namespace {
 
 using Law = model::PressureLaw<double>;
@@ -240,4 +240,4 @@ TEST(JointFit, AnUnknownFixedOrUnreadSharedParameterIsRejectedNamingIt) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::joint_fit_test

@@ -8,7 +8,7 @@
 
 #include <frictionid/synthetic_data.hpp>
 
-namespace frictionid {
+namespace frictionid::local_stage_test {
 namespace {
 
 using Law = model::PressureLaw<double>;
@@ -283,4 +283,4 @@ TEST(LocalStage, ANonFiniteModelFailsThePassInsteadOfReturningNaN) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::local_stage_test

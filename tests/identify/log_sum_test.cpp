@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-namespace frictionid {
+namespace frictionid::log_sum_test {
 namespace {
 
 // Sum of std::log in long double: the reference the block sum is held to.
@@ -60,4 +60,4 @@ TEST(LogSum, TakesSubnormalsOneByOneAndSignalsZeroNegativeAndInfinityAsLogDoes) 
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::log_sum_test

@@ -9,7 +9,7 @@
 #include <frictionid/fitter.hpp>
 #include <frictionid/synthetic_data.hpp>
 
-namespace frictionid {
+namespace frictionid::model_comparison_test {
 namespace {
 
 using Law = model::PressureLaw<double>;
@@ -212,4 +212,4 @@ TEST(ModelComparison, SlipCurvesAndMirroredAngles) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::model_comparison_test

@@ -11,7 +11,7 @@
 #include "support/noise_brute_force.hpp"
 #include "support/noise_stress_sample.hpp"
 
-namespace frictionid {
+namespace frictionid::noise_model_test {
 namespace {
 
 using Law = model::PressureLaw<double>;
@@ -344,4 +344,4 @@ TEST(NoiseModel, DefaultIntervalsCoverTheTruthNearNinetyFivePercentOnChannelDepe
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::noise_model_test

@@ -4,7 +4,7 @@
 
 #include <random>
 
-namespace frictionid {
+namespace frictionid::normal_equations_test {
 namespace {
 
 NormalEquations from_rows(const Eigen::MatrixXd& j, const Eigen::VectorXd& r) {
@@ -91,4 +91,4 @@ TEST(NormalEquations, RankDeficientSquareRootFormGivesTheTallProblemsMinimumNorm
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::normal_equations_test

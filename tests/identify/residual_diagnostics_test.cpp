@@ -9,7 +9,7 @@
 #include <frictionid/fitter.hpp>
 #include <frictionid/synthetic_data.hpp>
 
-namespace frictionid {
+namespace frictionid::residual_diagnostics_test {
 namespace {
 
 TEST(RankCorrelation, IsOneForAnIncreasingMapAndMinusOneForADecreasingOne) {
@@ -61,4 +61,4 @@ TEST(ResidualGrowth, NoWarningWhereTheNoiseModelOrSigmaColumnsTakeCareOfIt) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::residual_diagnostics_test

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-namespace frictionid {
+namespace frictionid::residuals_test {
 namespace {
 
 // The scaled residuals of a row must square-sum to rho(s) of its unscaled squared norm s.
@@ -92,4 +92,4 @@ TEST(Residuals, CauchyLossEqualsItsFormulaOnBothSidesOfTheSeriesSwitch) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::residuals_test

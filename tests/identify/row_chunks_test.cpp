@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace frictionid {
+namespace frictionid::row_chunks_test {
 namespace {
 
 TEST(RowChunks, EveryChunkRunsExactlyOnceWhateverTheThreadCount) {
@@ -44,4 +44,4 @@ TEST(RowChunks, ChunksCoverTheRowsWithTheLastOnePartial) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::row_chunks_test

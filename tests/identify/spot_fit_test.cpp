@@ -14,7 +14,7 @@
 #include "identify/spot_cache.hpp"
 #include "support/matched_digits.hpp"
 
-namespace frictionid {
+namespace frictionid::spot_fit_test {
 namespace {
 
 using Law = model::PressureLaw<double>;
@@ -216,4 +216,4 @@ TEST(SpotFit, TheCircleRefusesAFreeAspect) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::spot_fit_test

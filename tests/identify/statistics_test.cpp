@@ -4,7 +4,7 @@
 
 #include <random>
 
-namespace frictionid {
+namespace frictionid::statistics_test {
 namespace {
 
 // Reference quantiles: t_{0.975} for 1, 2, 10, 30 degrees of freedom (standard tables) and the
@@ -64,4 +64,4 @@ TEST(Statistics, IncompleteBetaMatchesClosedForms) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::statistics_test

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace frictionid {
+namespace frictionid::synthetic_data_test {
 namespace {
 
 TEST(SyntheticData, SameSeedGivesTheSameRowsAndAnotherSeedDifferentNoise) {
@@ -61,4 +61,4 @@ TEST(SyntheticData, DesignSpansTheRequestedEpsRangeWithBothSpinSignsAndBackwardS
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::synthetic_data_test

@@ -13,7 +13,7 @@
 
 #include "identify/row_chunks.hpp"
 
-namespace frictionid {
+namespace frictionid::thread_budget_test {
 namespace {
 
 // Counts the threads inside `work` at once and keeps the most seen.
@@ -101,4 +101,4 @@ TEST(ThreadBudget, AnExceptionInALoopGivesItsThreadsBack) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::thread_budget_test

@@ -9,7 +9,7 @@
 
 #include "support/noise_brute_force.hpp"
 
-namespace frictionid {
+namespace frictionid::variance_profile_test {
 namespace {
 
 // Fitted values log-spread over two decades (in units of the largest, as noise_model.cpp calls
@@ -135,4 +135,4 @@ TEST(VarianceProfile, RemainingGainCountsABoundParameterOnlyWhenMovingItInwardDe
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::variance_profile_test

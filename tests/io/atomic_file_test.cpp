@@ -14,6 +14,7 @@
 #include "io/atomic_file.hpp"
 #include "support/scratch_dir.hpp"
 
+namespace atomic_file_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -90,3 +91,4 @@ TEST(AtomicFile, AnUnwritableDeviceGivesAClearError) {
 }
 
 }  // namespace
+}  // namespace atomic_file_test

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-namespace frictionid {
+namespace frictionid::compare_html_test {
 namespace {
 
 // Ten rows at two loads, T_x measured; two models whose predictions differ.
@@ -128,4 +128,4 @@ TEST(CompareHtml, SaysTheWhiteningIsCommonWhenNoModelEstimatesNoise) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::compare_html_test

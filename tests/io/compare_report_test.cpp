@@ -4,7 +4,7 @@
 
 #include <string>
 
-namespace frictionid {
+namespace frictionid::compare_report_test {
 namespace {
 
 FitResult fit_with(const std::string& model,
@@ -45,9 +45,9 @@ TEST(CompareReport, EveryFittedCoefficientIsSetAgainstTheOneTheExactFitImplies) 
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::compare_report_test
 
-namespace frictionid {
+namespace frictionid::compare_report_test {
 namespace {
 
 ModelComparison circle_and_ellipse() {
@@ -96,4 +96,4 @@ TEST(CompareReport, AVariantsDirectoryKeepsOnlySafeCharacters) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::compare_report_test

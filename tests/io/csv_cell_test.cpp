@@ -10,7 +10,7 @@
 
 #include <frictionid/io/summary_table.hpp>
 
-namespace frictionid {
+namespace frictionid::csv_cell_test {
 namespace {
 
 TEST(CsvCell, ACellThatStartsAFormulaGetsALeadingApostrophe) {
@@ -59,4 +59,4 @@ TEST(SummaryCsv, FormulaLabelsAndTextCellsAreNeutralisedNumbersStayNumbers) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::csv_cell_test

@@ -19,7 +19,7 @@
 
 #include <frictionid/io/input_error.hpp>
 
-namespace frictionid {
+namespace frictionid::dataset_csv_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -643,4 +643,4 @@ TEST_F(DatasetCsv, ALargeFileReportsItsFirstBadRowWithItsLineWhereverItIs) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::dataset_csv_test

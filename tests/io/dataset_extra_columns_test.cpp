@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace frictionid {
+namespace frictionid::dataset_extra_columns_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -54,4 +54,4 @@ TEST(DatasetExtraColumns, AColumnShadowedByARenameIsKeptAsExtra) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::dataset_extra_columns_test

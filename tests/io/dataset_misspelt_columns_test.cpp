@@ -10,7 +10,7 @@
 #include <frictionid/io/input_error.hpp>
 #include "support/scratch_dir.hpp"
 
-namespace frictionid {
+namespace frictionid::dataset_misspelt_columns_test {
 namespace {
 
 std::string message_for(const test::ScratchDir& d, const std::string& header) {
@@ -52,4 +52,4 @@ TEST(DatasetMisspeltColumns, UnrelatedExtraColumnsAndNamesOfPresentColumnsAreKep
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::dataset_misspelt_columns_test

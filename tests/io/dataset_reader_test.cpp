@@ -15,7 +15,7 @@
 #include <frictionid/io/input_error.hpp>
 #include "support/scratch_dir.hpp"
 
-namespace frictionid {
+namespace frictionid::dataset_reader_test {
 namespace {
 
 constexpr double kPi = 3.141592653589793;
@@ -191,4 +191,4 @@ TEST_F(DatasetReader, InspectTellsTheFormWithoutTheRows) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::dataset_reader_test

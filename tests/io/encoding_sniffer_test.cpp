@@ -6,6 +6,7 @@
 
 #include <string>
 
+namespace encoding_sniffer_test {
 namespace {
 
 using frictionid::unsupported_encoding_hint;
@@ -45,3 +46,4 @@ TEST(EncodingSniffer, Utf8TextAndBinaryNoiseAreNotFlagged) {
 }
 
 }  // namespace
+}  // namespace encoding_sniffer_test

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-namespace frictionid {
+namespace frictionid::estimate_text_test {
 namespace {
 
 const std::string kNbsp = "\u00a0";
@@ -128,4 +128,4 @@ TEST(PlainNumber, SixDigitsWithAnUnbreakableExponent) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::estimate_text_test

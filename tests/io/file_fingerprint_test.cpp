@@ -13,7 +13,7 @@
 #include "io/sha256.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace frictionid {
+namespace frictionid::file_fingerprint_test {
 namespace {
 
 using test::ScratchDir;
@@ -51,4 +51,4 @@ TEST(FileFingerprint, AFifoADeviceAndADirectoryAreNotRegularFiles) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::file_fingerprint_test

@@ -9,7 +9,7 @@
 #include <frictionid/io/summary_html.hpp>
 #include "io/html_page.hpp"
 
-namespace frictionid {
+namespace frictionid::html_isolation_test {
 namespace {
 
 const std::string kRightToLeft =
@@ -79,4 +79,4 @@ TEST(SummaryHtml, AMalformedSortFragmentIsCaughtInThePageScript) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::html_isolation_test

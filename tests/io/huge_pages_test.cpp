@@ -5,7 +5,7 @@
 #include <numeric>
 #include <vector>
 
-namespace frictionid::io_detail {
+namespace frictionid::io_detail::huge_pages_test {
 namespace {
 
 // The advice is only a hint: a buffer keeps its contents and stays writable.
@@ -27,4 +27,4 @@ TEST(HugePages, SmallAndEmptyBuffersAreAccepted) {
 }
 
 }  // namespace
-}  // namespace frictionid::io_detail
+}  // namespace frictionid::io_detail::huge_pages_test

@@ -13,7 +13,7 @@
 #include <frictionid/io/input_error.hpp>
 #include "support/scratch_dir.hpp"
 
-namespace frictionid::io_detail {
+namespace frictionid::io_detail::line_reader_test {
 namespace {
 
 using test::ScratchDir;
@@ -254,4 +254,4 @@ TEST(LineReader, ReadErrorIsNotTakenForTheEnd) {
 }
 
 }  // namespace
-}  // namespace frictionid::io_detail
+}  // namespace frictionid::io_detail::line_reader_test

@@ -12,7 +12,7 @@
 #include "io/text.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace frictionid {
+namespace frictionid::message_escaping_test {
 namespace {
 
 bool printable_ascii(const std::string& s) {
@@ -96,4 +96,4 @@ TEST(DatasetCsvMessages, AHeaderOf200000FieldsGivesAMessageOfAFewHundredBytes) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::message_escaping_test

@@ -14,7 +14,7 @@
 
 #include "io/report_parts.hpp"
 
-namespace frictionid {
+namespace frictionid::page_style_test {
 namespace {
 
 // One CSS rule: the @media condition around it ("" for none), one selector of its list, its
@@ -180,4 +180,4 @@ TEST(PrintStyle, TheCssReaderReadsRulesAndMedia) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::page_style_test

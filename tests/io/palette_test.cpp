@@ -14,7 +14,7 @@
 
 #include "io/report_parts.hpp"
 
-namespace frictionid {
+namespace frictionid::palette_test {
 namespace {
 
 using Rgb = std::array<double, 3>;
@@ -163,4 +163,4 @@ TEST(HeatMap, ReportCellsCarryTheirContrastingText) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::palette_test

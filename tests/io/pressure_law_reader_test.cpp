@@ -10,7 +10,7 @@
 
 #include <frictionid/io/input_error.hpp>
 
-namespace frictionid {
+namespace frictionid::pressure_law_reader_test {
 namespace {
 
 TEST(PressureLawReader, AnnulusTakesItsInnerRadius) {
@@ -98,9 +98,9 @@ TEST(PressureLawReader, AThirdRowWithTheSameRhoIsRejectedAtItsLine) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::pressure_law_reader_test
 
-namespace frictionid {
+namespace frictionid::pressure_law_reader_test {
 namespace {
 
 // A table past the sample limit is refused at once, at the first sample too many: its exact
@@ -131,4 +131,4 @@ TEST(PressureLawReader, ATableOfMoreSamplesThanTheLimitIsRefusedAtTheFirstOneToo
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::pressure_law_reader_test

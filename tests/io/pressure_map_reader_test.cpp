@@ -11,7 +11,7 @@
 
 #include <frictionid/io/input_error.hpp>
 
-namespace frictionid {
+namespace frictionid::pressure_map_reader_test {
 namespace {
 
 // A temporary map file, removed at the end of the test (one per test: ctest runs them apart).
@@ -164,4 +164,4 @@ TEST(PressureMapReader, ContactLabelsSpellTheSpotAsTheCommandLineDoes) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::pressure_map_reader_test

@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-namespace frictionid {
+namespace frictionid::report_html_test {
 namespace {
 
 // Two loads, a slip sweep at fixed spin; T_x = 0.5 N eps / (1 + eps) measured with a small
@@ -305,4 +305,4 @@ TEST(ReportHtml, EachParameterRowNamesItsIntervalMethod) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::report_html_test

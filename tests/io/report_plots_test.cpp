@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace frictionid {
+namespace frictionid::report_plots_test {
 namespace {
 
 const ReportPlot& plot_named(const std::vector<ReportPlot>& plots, const std::string& file) {
@@ -151,4 +151,4 @@ TEST(ReportPlots, CollapseLinesFollowOneSlipDirectionAndSpinSignEach) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::report_plots_test

@@ -20,6 +20,7 @@
 #include "io/report_location.hpp"
 #include "support/scratch_dir.hpp"
 
+namespace report_transaction_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -143,3 +144,4 @@ TEST(ReportLocation, DotDotDotAndRootAreRejected) {
 }
 
 }  // namespace
+}  // namespace report_transaction_test

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-namespace frictionid {
+namespace frictionid::report_writer_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -514,9 +514,9 @@ TEST(WriteReport, UnwritableDirectoryThrows) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::report_writer_test
 
-namespace frictionid {
+namespace frictionid::report_writer_test {
 namespace {
 
 // A fit on another spot than the circle says so in report.json (after the pressure) and in the
@@ -559,4 +559,4 @@ TEST(ReportContact, TheCircleIsNotStatedSoItsReportsStayAsTheyWere) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::report_writer_test

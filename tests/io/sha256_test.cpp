@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-namespace frictionid {
+namespace frictionid::sha256_test {
 namespace {
 
 TEST(Sha256, MatchesTheNistExampleVectors) {
@@ -71,4 +71,4 @@ TEST(Sha256, MessagesAroundThePaddingBoundaryDiffer) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::sha256_test

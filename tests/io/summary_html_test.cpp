@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace frictionid {
+namespace frictionid::summary_html_test {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -258,4 +258,4 @@ TEST(SummaryHtml, NoRunsIsAPageThatSaysSo) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::summary_html_test

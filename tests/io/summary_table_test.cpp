@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace frictionid {
+namespace frictionid::summary_table_test {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -124,4 +124,4 @@ TEST(SummaryTable, DatasetCovariatesAreMeansOverTheRows) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::summary_table_test

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace frictionid::svg {
+namespace frictionid::svg::svg_plot_test {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -122,4 +122,4 @@ TEST(Render, InlineElementHasNoNamespaceButTheFileHas) {
 }
 
 }  // namespace
-}  // namespace frictionid::svg
+}  // namespace frictionid::svg::svg_plot_test

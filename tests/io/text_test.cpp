@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace frictionid::text {
+namespace frictionid::text::text_test {
 namespace {
 
 TEST(ParseDoubleStrict, ReturnsNullOnSuccessAndReasonOnFailure) {
@@ -109,9 +109,9 @@ TEST(MisspellingDistance, AllowsOneEditForShortNamesAndTwoFromSixCharacters) {
 }
 
 }  // namespace
-}  // namespace frictionid::text
+}  // namespace frictionid::text::text_test
 
-namespace frictionid::text {
+namespace frictionid::text::text_test {
 namespace {
 
 TEST(ShownText, EveryByteThatIsNotPrintableAsciiIsEscaped) {
@@ -135,4 +135,4 @@ TEST(CommandLine, QuotesOnlyWordsAShellWouldSplitAndEscapesControlBytes) {
 }
 
 }  // namespace
-}  // namespace frictionid::text
+}  // namespace frictionid::text::text_test

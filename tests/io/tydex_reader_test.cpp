@@ -14,7 +14,7 @@
 #include <frictionid/io/input_error.hpp>
 #include "support/scratch_dir.hpp"
 
-namespace frictionid {
+namespace frictionid::tydex_reader_test {
 namespace {
 
 constexpr double kDeg = 3.141592653589793 / 180.0;
@@ -193,4 +193,4 @@ TEST_F(Tydex, ExtensionIsRecognisedInAnyCase) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::tydex_reader_test

@@ -13,7 +13,7 @@
 #include <frictionid/io/input_error.hpp>
 #include "support/scratch_dir.hpp"
 
-namespace frictionid {
+namespace frictionid::units_test {
 namespace {
 
 constexpr double kPi = 3.141592653589793;
@@ -150,4 +150,4 @@ TEST(Units, TheNativeReaderRejectsAWrongUnitAtItsColumn) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::units_test

@@ -16,7 +16,7 @@
 #include <frictionid/io/input_error.hpp>
 #include "support/scratch_dir.hpp"
 
-namespace frictionid {
+namespace frictionid::wheel_form_test {
 namespace {
 
 constexpr double kPi = 3.141592653589793;
@@ -357,4 +357,4 @@ TEST_F(WheelForm, ANumberOutOfRangeAfterItsUnitIsRejected) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::wheel_form_test

@@ -14,7 +14,7 @@
 #include "io/svg_plot.hpp"
 #include "support/xml_well_formed.hpp"
 
-namespace frictionid {
+namespace frictionid::writers_well_formed_test {
 namespace {
 
 using test::html_problem;
@@ -179,4 +179,4 @@ TEST(HtmlPage, RandomBytesInTheTitleGiveAWellFormedPage) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::writers_well_formed_test

@@ -12,7 +12,7 @@
 #include <frictionid/model/exact_model.hpp>
 #include "model/test_support.hpp"
 
-namespace frictionid::model {
+namespace frictionid::model::approximants_test {
 namespace {
 
 using testing::beta_moment;
@@ -356,4 +356,4 @@ TEST(Approximants, AreNotExactInBetween) {
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::approximants_test

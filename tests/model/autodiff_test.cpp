@@ -13,7 +13,7 @@
 #include <frictionid/model/pressure_table.hpp>
 #include <frictionid/model_variant.hpp>
 
-namespace frictionid {
+namespace frictionid::autodiff_test {
 namespace {
 
 using Jet = ceres::Jet<double, kParamCount>;
@@ -227,4 +227,4 @@ TEST(Autodiff, ApproximantDerivativesAreFiniteUnderPureSliding) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::autodiff_test

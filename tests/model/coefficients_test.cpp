@@ -22,7 +22,7 @@
 #include <frictionid/model/pressure_table.hpp>
 #include "model/test_support.hpp"
 
-namespace frictionid::model {
+namespace frictionid::model::coefficients_test {
 namespace {
 
 using testing::beta_moment;
@@ -197,4 +197,4 @@ TEST(Coefficients, TripleFixesTheMomentRatios) {
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::coefficients_test

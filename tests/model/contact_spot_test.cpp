@@ -19,6 +19,7 @@
 #include "model/spot_cases.hpp"
 #include "model/spot_reference.hpp"
 
+namespace contact_spot_test {
 namespace {
 
 namespace sr = frictionid::testing::spot_ref;
@@ -300,3 +301,4 @@ TEST(ContactSpot, PureSlidingGivesFNDTimesTheSlipDirectionAndTheTiltTorque) {
 }
 
 }  // namespace
+}  // namespace contact_spot_test

@@ -25,7 +25,7 @@
 
 #include "model/spot_cases.hpp"
 
-namespace frictionid::model {
+namespace frictionid::model::ellipse_law_integrator_test {
 namespace {
 
 using testing::spot_cases::Uniform;
@@ -134,4 +134,4 @@ TEST(EllipseLawIntegrator, ATableOfManySamplesByTheProductRuleMatchesGaussLegend
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::ellipse_law_integrator_test

@@ -8,6 +8,7 @@
 
 #include "model/spot_cases.hpp"
 
+namespace ellipse_nearest_point_test {
 namespace {
 
 namespace fm = frictionid::model;
@@ -82,3 +83,4 @@ TEST(NearestRimPoint, NextToTheLongAxisItStaysExact) {
 }
 
 }  // namespace
+}  // namespace ellipse_nearest_point_test

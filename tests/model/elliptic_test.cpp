@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace frictionid::model {
+namespace frictionid::model::elliptic_test {
 namespace {
 
 // Independent reference: the periodic trapezoid rule on [0, 2 pi) converges geometrically for
@@ -65,4 +65,4 @@ TEST(Elliptic, KFollowsItsLogarithmicAsymptoteNearModulusOne) {
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::elliptic_test

@@ -16,7 +16,7 @@
 #include "model/reference_integrator.hpp"
 #include "model/test_support.hpp"
 
-namespace frictionid::model {
+namespace frictionid::model::exact_model_test {
 namespace {
 
 using testing::beta_moment;
@@ -590,4 +590,4 @@ TEST(ExactModel, AntiRollingCoupleIsHNRm3Over2m1) {
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::exact_model_test

@@ -16,7 +16,7 @@
 #include <frictionid/model/pressure_table.hpp>
 #include <frictionid/model_variant.hpp>
 
-namespace frictionid {
+namespace frictionid::kinematic_autodiff_test {
 namespace {
 
 using Dual = ceres::Jet<double, 1>;
@@ -148,4 +148,4 @@ TEST(KinematicAutodiff, AnExactModelWithoutItsTableRefusesDualKinematics) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::kinematic_autodiff_test

@@ -21,7 +21,7 @@
 
 #include "model/spot_cases.hpp"
 
-namespace frictionid::model {
+namespace frictionid::model::map_corner_sums_test {
 namespace {
 
 namespace sc = frictionid::testing::spot_cases;
@@ -62,9 +62,9 @@ TEST(MapCornerSums, OneCellEqualsItsCellRuleTo1e12OfTheLoadWithTheCentreOnItOrIn
   for (int k = 0; k < 200; ++k) {
     PressureMap m;
     const double x0 = u.in(-1.0, 0.0), y0 = u.in(-1.0, 0.0);
-    m.x = {x0, x0 + u.in(0.1, 1.5)};
-    m.y = {y0, y0 + u.in(0.1, 1.5)};
-    m.sigma0 = {u.in(0.0, 2.0), u.in(0.0, 2.0), u.in(0.0, 2.0), u.in(0.0, 2.0)};
+    m.x = std::vector<double>{x0, x0 + u.in(0.1, 1.5)};
+    m.y = std::vector<double>{y0, y0 + u.in(0.1, 1.5)};
+    m.sigma0 = std::vector<double>{u.in(0.0, 2.0), u.in(0.0, 2.0), u.in(0.0, 2.0), u.in(0.0, 2.0)};
     const MapStripIntegrator map(m);
     const double load = 0.25 * (m.x[1] - m.x[0]) * (m.y[1] - m.y[0]) *
                         (m.sigma0[0] + m.sigma0[1] + m.sigma0[2] + m.sigma0[3]);
@@ -135,4 +135,4 @@ TEST(MapCornerSums, MatchTheCellRulesOnRandomGridsTo5e12OfTheLoad) {
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::map_corner_sums_test

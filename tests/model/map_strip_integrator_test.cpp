@@ -22,7 +22,7 @@
 #include "model/spot_cases.hpp"
 #include "model/spot_reference.hpp"
 
-namespace frictionid::model {
+namespace frictionid::model::map_strip_integrator_test {
 namespace {
 
 namespace sr = frictionid::testing::spot_ref;
@@ -153,8 +153,8 @@ TEST(MapStripIntegrator, AUniformMapIsTheUniformRectangle) {
   // law; the reference is the ray integration at its fine rules.
   const double q = 0.7;
   PressureMap map;
-  map.x = {-1.0, 0.2, 1.0};
-  map.y = {-q, 0.1, q};
+  map.x = std::vector<double>{-1.0, 0.2, 1.0};
+  map.y = std::vector<double>{-q, 0.1, q};
   map.sigma0.assign(9, 2.0);
   const MapStripIntegrator strips(map);
   const SpotIntegrator rays(ContactSpot::rect(q), PressureLaw<double>::uniform(), q,
@@ -172,4 +172,4 @@ TEST(MapStripIntegrator, AUniformMapIsTheUniformRectangle) {
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::map_strip_integrator_test

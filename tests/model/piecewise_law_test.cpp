@@ -19,7 +19,7 @@
 #include "model/reference_integrator.hpp"
 #include "model/test_support.hpp"
 
-namespace frictionid::model {
+namespace frictionid::model::piecewise_law_test {
 namespace {
 
 using testing::kPi;
@@ -281,4 +281,4 @@ TEST(PiecewiseLaw, ResultsAreContinuousAcrossTableSamples) {
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::piecewise_law_test

@@ -16,7 +16,7 @@
 #include <frictionid/model/pressure_table.hpp>
 #include "model/test_support.hpp"
 
-namespace frictionid::model {
+namespace frictionid::model::pressure_law_test {
 namespace {
 
 using testing::beta_moment;
@@ -356,4 +356,4 @@ TEST(PressureTable, ItsKinksAreTheJumpsOfTheSecondDerivativeAtItsSamples) {
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::pressure_law_test

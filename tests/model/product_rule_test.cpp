@@ -13,6 +13,7 @@
 
 namespace fm = frictionid::model;
 
+namespace product_rule_test {
 namespace {
 
 // A weight of `count` quartic pieces over [0, 1] between random breakpoints, with random
@@ -108,3 +109,4 @@ TEST(DyadicProductRule, RulesOfTheSameWeightShareTheirStoredWeights) {
   EXPECT_GT(differ_c, 0.0);
   EXPECT_GT(differ_d, 0.0);
 }
+}  // namespace product_rule_test

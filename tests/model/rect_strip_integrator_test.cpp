@@ -18,7 +18,7 @@
 
 #include "model/spot_cases.hpp"
 
-namespace frictionid::model {
+namespace frictionid::model::rect_strip_integrator_test {
 namespace {
 
 using testing::spot_cases::Uniform;
@@ -82,4 +82,4 @@ TEST(RectStripIntegrator, ATableOfManySamplesByTheProductRuleMatchesGaussLegendr
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::rect_strip_integrator_test

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+namespace reference_integrator_selftest {
 namespace {
 
 using frictionid::testing::reference_resultants;
@@ -261,3 +262,4 @@ TEST(ReferenceIntegrator, DiskEngine) {
 }
 
 }  // namespace
+}  // namespace reference_integrator_selftest

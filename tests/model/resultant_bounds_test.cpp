@@ -16,7 +16,7 @@
 
 #include <frictionid/model/ring_integral_table.hpp>
 
-namespace frictionid::model {
+namespace frictionid::model::resultant_bounds_test {
 namespace {
 
 struct NamedLaw {
@@ -79,4 +79,4 @@ TEST(ResultantBounds, ForceAndSpinTorqueStayWithinTheCoulombBoundsForEveryLaw) {
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::resultant_bounds_test

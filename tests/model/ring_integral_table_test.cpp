@@ -15,7 +15,7 @@
 #include "model/reference_integrator.hpp"
 #include "model/test_support.hpp"
 
-namespace frictionid::model {
+namespace frictionid::model::ring_integral_table_test {
 namespace {
 
 using testing::beta_moment;
@@ -191,4 +191,4 @@ TEST(RingIntegralTable, ATableOfAnotherLawIsRejected) {
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::ring_integral_table_test

@@ -13,7 +13,7 @@
 
 #include "model/test_support.hpp"
 
-namespace frictionid::model {
+namespace frictionid::model::ring_kernels_test {
 namespace {
 
 using testing::gauss_legendre;
@@ -311,4 +311,4 @@ TEST(RingKernels, SatisfyTheMuFormIdentitiesNearTheCentreRing) {
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::ring_kernels_test

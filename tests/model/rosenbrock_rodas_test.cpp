@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+namespace rosenbrock_rodas_test {
 namespace {
 
 using namespace frictionid::model;
@@ -130,3 +131,4 @@ TEST(Rodas, ReportsASingularMatrix) {
 }
 
 }  // namespace
+}  // namespace rosenbrock_rodas_test

@@ -19,6 +19,7 @@
 #include <frictionid/model/ring_integral_table.hpp>
 #include <frictionid/model/spot_model.hpp>
 
+namespace shimmy_simulation_test {
 namespace {
 
 using namespace frictionid::model;
@@ -426,3 +427,4 @@ TEST(ShimmyOutcome, ARunThatEndsHoldingTheForkOffCentreSaysSo) {
 }
 
 }  // namespace
+}  // namespace shimmy_simulation_test

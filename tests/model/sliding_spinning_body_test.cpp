@@ -18,6 +18,7 @@
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/model/pressure_table.hpp>
 
+namespace sliding_spinning_body_test {
 namespace {
 
 using namespace frictionid::model;
@@ -283,3 +284,4 @@ TEST(SlidingSpinningBody, RejectsABodyAtRestOrWithoutInertia) {
 }
 
 }  // namespace
+}  // namespace sliding_spinning_body_test

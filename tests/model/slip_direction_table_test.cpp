@@ -11,6 +11,7 @@
 #include <frictionid/model/exact_model.hpp>
 #include <frictionid/model/pressure_law.hpp>
 
+namespace slip_direction_table_test {
 namespace {
 
 using namespace frictionid::model;
@@ -91,3 +92,4 @@ TEST(SlipDirectionTable, ItsSlopeIsTheDerivativeOfItsInterpolant) {
 }
 
 }  // namespace
+}  // namespace slip_direction_table_test

@@ -31,7 +31,7 @@
 
 #include "model/spot_cases.hpp"
 
-namespace frictionid::model {
+namespace frictionid::model::spot_integral_table_test {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -713,4 +713,4 @@ TEST(RectStripIntegrator, MatchesTheRayIntegrationNearAndFar) {
 }
 
 }  // namespace
-}  // namespace frictionid::model
+}  // namespace frictionid::model::spot_integral_table_test

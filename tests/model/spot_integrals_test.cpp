@@ -16,6 +16,7 @@
 #include "model/spot_cases.hpp"
 #include "model/spot_reference.hpp"
 
+namespace spot_integrals_test {
 namespace {
 
 namespace sr = frictionid::testing::spot_ref;
@@ -116,3 +117,4 @@ TEST(SpotIntegrator, TheRingOnElongatedEllipsesMatchesTheTrapezoidalRuleAlongThe
 }
 
 }  // namespace
+}  // namespace spot_integrals_test

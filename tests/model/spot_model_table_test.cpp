@@ -18,6 +18,7 @@
 #include "model/spot_cases.hpp"
 #include "model/spot_reference.hpp"
 
+namespace spot_model_table_test {
 namespace {
 
 namespace sr = frictionid::testing::spot_ref;
@@ -195,3 +196,4 @@ INSTANTIATE_TEST_SUITE_P(SpotModelTable, TableLawOfSamples,
                          ::testing::Values(21, 41, 65, 100, 300));
 
 }  // namespace
+}  // namespace spot_model_table_test

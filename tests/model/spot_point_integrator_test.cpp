@@ -12,6 +12,7 @@
 #include "model/spot_cases.hpp"
 #include "model/spot_reference.hpp"
 
+namespace spot_point_integrator_test {
 namespace {
 
 namespace sr = frictionid::testing::spot_ref;
@@ -76,3 +77,4 @@ TEST(SpotPointIntegrator, AnAnnulusOnAnEllipseAgreesWithItsOwnRays) {
 }
 
 }  // namespace
+}  // namespace spot_point_integrator_test

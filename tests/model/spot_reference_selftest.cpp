@@ -17,6 +17,7 @@
 #include "model/spot_cases.hpp"
 #include "model/spot_reference.hpp"
 
+namespace spot_reference_selftest {
 namespace {
 
 namespace sr = frictionid::testing::spot_ref;
@@ -318,3 +319,4 @@ TEST(SpotReference, AtRestThereIsNoFrictionButTheLoadMomentsRemain) {
 }
 
 }  // namespace
+}  // namespace spot_reference_selftest

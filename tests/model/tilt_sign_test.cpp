@@ -5,7 +5,7 @@
 
 #include <frictionid/model_variant.hpp>
 
-namespace frictionid {
+namespace frictionid::tilt_sign_test {
 namespace {
 
 void expect_turned_equals_negated(ModelKind kind, const model::ContactSpot& spot) {
@@ -50,4 +50,4 @@ TEST(TiltSign, ATurnedRowIsTheRowWithNegatedTiltsForTheExactModelOnAnEllipse) {
 }
 
 }  // namespace
-}  // namespace frictionid
+}  // namespace frictionid::tilt_sign_test
