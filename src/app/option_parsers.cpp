@@ -32,7 +32,7 @@ std::string number_text(double x) {
 }
 
 // The whole text, quoted, with control characters escaped.
-std::string quoted(std::string_view s) {
+std::string in_quotes(std::string_view s) {
   return text::shown(s, std::string_view::npos);
 }
 
@@ -51,7 +51,7 @@ std::vector<std::string_view> split_items(const std::string& option, const std::
     if (item.empty())
       throw InputError(option, 0, 0,
                        "empty entry (entry " + std::to_string(items.size() + 1) + ") in " +
-                           quoted(spec) + "; expected " + expected);
+                           in_quotes(spec) + "; expected " + expected);
     items.push_back(item);
     if (comma == std::string_view::npos) break;
     pos = comma + 1;
@@ -63,12 +63,12 @@ void check_name(const std::string& option, const std::string& spec, std::string_
                 std::string_view item, const char* expected) {
   if (name.empty())
     throw InputError(option, 0, 0,
-                     "missing name before '=' in " + quoted(item) + " (in " + quoted(spec) +
+                     "missing name before '=' in " + in_quotes(item) + " (in " + in_quotes(spec) +
                          "); expected " + expected);
   for (char c : name)
     if (!is_name_char(c))
       throw InputError(option, 0, 0,
-                       "invalid name " + quoted(name) + " in " + quoted(spec) +
+                       "invalid name " + in_quotes(name) + " in " + in_quotes(spec) +
                            ": expected letters, digits and '_' only (format: " + expected + ")");
 }
 
@@ -77,8 +77,9 @@ double number_in(const std::string& option, const std::string& spec, std::string
   double value = 0;
   if (const char* why = text::parse_double_strict(text, value))
     throw InputError(option, 0, 0,
-                     std::string(role) + " for " + quoted(name) + " is " + quoted(text) + ": " +
-                         why + "; expected a finite decimal number (in " + quoted(spec) + ")");
+                     std::string(role) + " for " + in_quotes(name) + " is " + in_quotes(text) +
+                         ": " + why + "; expected a finite decimal number (in " + in_quotes(spec) +
+                         ")");
   return value;
 }
 
@@ -89,9 +90,9 @@ std::pair<std::string_view, std::string_view> split_assignment(const std::string
                                                                const char* expected) {
   const std::size_t eq = item.find('=');
   if (eq == std::string_view::npos)
-    throw InputError(
-        option, 0, 0,
-        "missing '=' in " + quoted(item) + " (in " + quoted(spec) + "); expected " + expected);
+    throw InputError(option, 0, 0,
+                     "missing '=' in " + in_quotes(item) + " (in " + in_quotes(spec) +
+                         "); expected " + expected);
   const std::string_view name = trim(item.substr(0, eq));
   check_name(option, spec, name, item, expected);
   return {name, trim(item.substr(eq + 1))};
@@ -101,7 +102,7 @@ void check_unique(const std::string& option, const std::string& spec, std::set<s
                   std::string_view name) {
   if (!seen.emplace(name).second)
     throw InputError(option, 0, 0,
-                     "name " + quoted(name) + " is given more than once in " + quoted(spec));
+                     "name " + in_quotes(name) + " is given more than once in " + in_quotes(spec));
 }
 
 }  // namespace
@@ -111,7 +112,7 @@ double parse_number(const std::string& what, const std::string& text) {
   const std::string_view t = trim(text);
   if (const char* why = text::parse_double_strict(t, value))
     throw InputError(what, 0, 0,
-                     "got " + quoted(text) + " (" + why + "); expected a finite decimal number");
+                     "got " + in_quotes(text) + " (" + why + "); expected a finite decimal number");
   return value;
 }
 
@@ -126,15 +127,15 @@ std::uint64_t parse_whole_number(const std::string& option, const std::string& t
     const bool negative = !t.empty() && t.front() == '-';
     throw InputError(
         option, 0, 0,
-        "got " + quoted(text) + (negative ? " (negative)" : " (not a whole number)") + range);
+        "got " + in_quotes(text) + (negative ? " (negative)" : " (not a whole number)") + range);
   }
   std::uint64_t value = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
   if (ec == std::errc::result_out_of_range || value > hi)
-    throw InputError(option, 0, 0, "got " + quoted(text) + " (too large)" + range);
+    throw InputError(option, 0, 0, "got " + in_quotes(text) + " (too large)" + range);
   if (ec != std::errc() || end != t.data() + t.size())
-    throw InputError(option, 0, 0, "got " + quoted(text) + " (not a whole number)" + range);
-  if (value < lo) throw InputError(option, 0, 0, "got " + quoted(text) + " (too small)" + range);
+    throw InputError(option, 0, 0, "got " + in_quotes(text) + " (not a whole number)" + range);
+  if (value < lo) throw InputError(option, 0, 0, "got " + in_quotes(text) + " (too small)" + range);
   return value;
 }
 
@@ -162,14 +163,14 @@ std::map<std::string, std::pair<double, double>> parse_bounds(const std::string&
     const std::size_t colon = range.find(':');
     if (colon == std::string_view::npos || range.find(':', colon + 1) != std::string_view::npos)
       throw InputError(option, 0, 0,
-                       "bounds for " + quoted(name) + " are " + quoted(range) +
-                           "; expected exactly one ':' as in lo:hi (in " + quoted(spec) + ")");
+                       "bounds for " + in_quotes(name) + " are " + in_quotes(range) +
+                           "; expected exactly one ':' as in lo:hi (in " + in_quotes(spec) + ")");
     const double lo = number_in(option, spec, name, trim(range.substr(0, colon)), "lower bound");
     const double hi = number_in(option, spec, name, trim(range.substr(colon + 1)), "upper bound");
     if (!(lo < hi))
       throw InputError(option, 0, 0,
-                       "bounds for " + quoted(name) + " are " + quoted(range) +
-                           ": expected lo < hi (in " + quoted(spec) + ")");
+                       "bounds for " + in_quotes(name) + " are " + in_quotes(range) +
+                           ": expected lo < hi (in " + in_quotes(spec) + ")");
     result.emplace(std::string(name), std::make_pair(lo, hi));
   }
   return result;
@@ -207,11 +208,12 @@ model::ContactSpot parse_contact_option(const std::string& spec) {
     const std::string_view q_text = trim(std::string_view(spec).substr(prefix.size()));
     double q = 0;
     if (const char* why = text::parse_double_strict(q_text, q))
-      throw InputError(option, 0, 0,
-                       quoted(spec) + ": Q is " + quoted(q_text) + " (" + why + "); " + kExpected);
+      throw InputError(
+          option, 0, 0,
+          in_quotes(spec) + ": Q is " + in_quotes(q_text) + " (" + why + "); " + kExpected);
     if (!(q > 0.0 && q <= 4.0))
       throw InputError(option, 0, 0,
-                       quoted(spec) + ": Q = " + number_text(q) +
+                       in_quotes(spec) + ": Q = " + number_text(q) +
                            " is out of range; expected 0 < Q <= 4 (the spot's extent along y over "
                            "its extent R along x)");
     return prefix == "rect:" ? model::ContactSpot::rect(q) : model::ContactSpot::ellipse(q);
@@ -220,7 +222,7 @@ model::ContactSpot parse_contact_option(const std::string& spec) {
     if (spec.size() == 4) throw InputError(option, 0, 0, "'map:': map:FILE needs a file name");
     return model::ContactSpot::pressure_map(load_pressure_map(spec.substr(4)));
   }
-  throw InputError(option, 0, 0, "unknown contact spot " + quoted(spec) + "; " + kExpected);
+  throw InputError(option, 0, 0, "unknown contact spot " + in_quotes(spec) + "; " + kExpected);
 }
 
 std::string contact_label(const std::string& spec) {
@@ -269,20 +271,20 @@ ColumnMap checked_column_map(const std::vector<std::pair<std::string, std::strin
         }
       }
       throw InputError(option, 0, 0,
-                       "unknown canonical column " + quoted(canonical) + " in " + quoted(spec) +
-                           hint + " (expected one of: " + list + ")");
+                       "unknown canonical column " + in_quotes(canonical) + " in " +
+                           in_quotes(spec) + hint + " (expected one of: " + list + ")");
     }
     if (header.empty())
       throw InputError(option, 0, 0,
-                       "empty header name for '" + canonical + "' in " + quoted(spec) +
+                       "empty header name for '" + canonical + "' in " + in_quotes(spec) +
                            "; expected " + kExpected);
     if (map.canonical_to_header.count(canonical))
       throw InputError(option, 0, 0,
-                       "'" + canonical + "' is mapped more than once in " + quoted(spec));
+                       "'" + canonical + "' is mapped more than once in " + in_quotes(spec));
     if (!headers.insert(header).second)
       throw InputError(option, 0, 0,
-                       "header name " + quoted(header) + " is mapped to more than one column in " +
-                           quoted(spec));
+                       "header name " + in_quotes(header) +
+                           " is mapped to more than one column in " + in_quotes(spec));
     map.canonical_to_header.emplace(canonical, header);
   }
   // A header name may not stand for two canonical columns of one form (v_x=omega leaves omega
@@ -331,9 +333,9 @@ ColumnMap column_map(const std::map<std::string, std::string>& canonical_to_head
 void check_values(const std::string& option, const std::map<std::string, double>& values) {
   for (const auto& [name, value] : values)
     if (!std::isfinite(value))
-      throw InputError(
-          option, 0, 0,
-          "value for " + quoted(name) + " is " + number_text(value) + "; expected a finite number");
+      throw InputError(option, 0, 0,
+                       "value for " + in_quotes(name) + " is " + number_text(value) +
+                           "; expected a finite number");
 }
 
 void check_bounds(const std::string& option,
@@ -347,12 +349,12 @@ void check_bounds(const std::string& option,
     const std::string range = number_text(lo) + ":" + number_text(hi);
     if (!std::isfinite(lo) || !std::isfinite(hi))
       throw InputError(option, 0, 0,
-                       "bounds for " + quoted(name) + " are " + quoted(range) +
-                           ": expected finite numbers (in " + quoted(spec) + ")");
+                       "bounds for " + in_quotes(name) + " are " + in_quotes(range) +
+                           ": expected finite numbers (in " + in_quotes(spec) + ")");
     if (!(lo < hi))
       throw InputError(option, 0, 0,
-                       "bounds for " + quoted(name) + " are " + quoted(range) +
-                           ": expected lo < hi (in " + quoted(spec) + ")");
+                       "bounds for " + in_quotes(name) + " are " + in_quotes(range) +
+                           ": expected lo < hi (in " + in_quotes(spec) + ")");
   }
 }
 
@@ -361,7 +363,7 @@ void check_names(const std::string& option, const std::vector<std::string>& name
   for (const auto& name : names) {
     if (name.empty()) throw InputError(option, 0, 0, "empty name in the list");
     if (!seen.insert(name).second)
-      throw InputError(option, 0, 0, "name " + quoted(name) + " is given more than once");
+      throw InputError(option, 0, 0, "name " + in_quotes(name) + " is given more than once");
   }
 }
 

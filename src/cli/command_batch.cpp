@@ -43,7 +43,22 @@ namespace frictionid::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using namespace app;
+using app::BatchJournal;
+using app::BatchRequest;
+using app::BatchRun;
+using app::check_shared_option;
+using app::check_shared_parameters;
+using app::check_trend_x;
+using app::fit_batch_run;
+using app::fit_data_form;
+using app::fit_request_json;
+using app::fit_settings;
+using app::plan_batch_runs;
+using app::report_provenance;
+using app::warm_start_from;
+using app::WarmStart;
+using app::write_shared_fit;
+
 using seconds = std::chrono::duration<double>;
 
 struct BatchContext {

@@ -21,7 +21,7 @@ namespace {
 
 std::atomic<bool> allow_lanes{true};
 
-constexpr double kTiny = 1e-300;
+constexpr double kTinyVariance = 1e-300;
 // Grid: three points per decade of tau; its ends put tau z within 1e-9 of the bounds.
 const double kGridStep = std::log(10.0) / 3.0;
 constexpr double kBoundReach = 1e9;
@@ -76,7 +76,7 @@ ProfileValue profile(TwoTermForm form, const std::vector<double>& y, const std::
   }
   ProfileValue v;
   v.floor_variance = sum_eh / n;
-  const double a = std::max(v.floor_variance, kTiny);
+  const double a = std::max(v.floor_variance, kTinyVariance);
   v.p = n * std::log(a) + k * log_g.sum() + n;
   v.dp = sum_d - sum_ehd / a;
   v.d2p = sum_ehdc / a - (sum_ehd / a) * (sum_ehd / a) / n + sum_c;
@@ -129,7 +129,7 @@ __attribute__((target("avx2"))) bool profile_lanes(const std::vector<double>& y,
   }
   if (special[0] | special[1] | special[2] | special[3]) return false;
   for (int l = 0; l < 4; ++l) {  // the end of profile()
-    const double a = std::max(sum_eh[l] / n, kTiny);
+    const double a = std::max(sum_eh[l] / n, kTinyVariance);
     p[l] = n * std::log(a) + K * LogSum::sum_of(exponent[l], logs[l], product[l], 0.0) + n;
   }
   return true;
@@ -317,7 +317,7 @@ double remaining_gain(TwoTermForm form, double s_abs, double s_rel, const std::v
     double d0, d1, v;
     if (form == TwoTermForm::Affine) {
       const double a = s_abs * s_abs, b = s_rel * s_rel * y[i] * y[i];
-      v = std::max(a + b, kTiny);
+      v = std::max(a + b, kTinyVariance);
       d0 = s_abs > 0.0 ? 2.0 * a / v : 1.0 / v;
       d1 = s_rel > 0.0 ? 2.0 * b / v : y[i] * y[i] / v;
     } else {

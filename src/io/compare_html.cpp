@@ -26,12 +26,6 @@ constexpr const char* kModelDashes[] = {"", "7 4", "2 3", "9 3 2 3", "4 4"};
 // More curves (slip direction, spin sign, tilt sign) than this: models as dots, not lines.
 constexpr std::size_t kMaxCompareCurves = 24;
 
-const ParameterEstimate* find_param(const FitResult& f, const std::string& name) {
-  for (const auto& p : f.parameters)
-    if (p.name == name) return &p;
-  return nullptr;
-}
-
 }  // namespace
 
 std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d) {
@@ -128,10 +122,8 @@ std::vector<ReportPlot> compare_plots(const ModelComparison& c, const Dataset& d
 
 namespace {
 
-// Each section below appends its lines to the page h; line() adds one and its newline.
-void line(std::string& h, const std::string& s) {
-  (h += s) += '\n';
-}
+// Each section below appends its lines to the page h (html::line).
+using html::line;
 
 void warnings_section(std::string& h, const ModelComparison& c) {
   std::vector<std::string> warnings, models;

@@ -25,12 +25,6 @@ std::string g6(double x) {
   return std::isfinite(x) ? plain_number(x) : kNoNumber;
 }
 
-const ParameterEstimate* find_param(const FitResult& f, const std::string& name) {
-  for (const auto& p : f.parameters)
-    if (p.name == name) return &p;
-  return nullptr;
-}
-
 std::vector<std::string> all_parameter_names(const ModelComparison& c) {
   std::vector<std::string> names;
   for (const auto& f : c.fits)

@@ -16,8 +16,8 @@ namespace frictionid::io_detail {
 
 namespace {
 
-using QuotePolicy = io::double_quote_escape<',', '"'>;
-using TrimPolicy = io::trim_chars<' ', '\t'>;
+using QuotePolicy = ::io::double_quote_escape<',', '"'>;
+using TrimPolicy = ::io::trim_chars<' ', '\t'>;
 using text::shown;
 
 }  // namespace
@@ -44,7 +44,7 @@ void split_fields(char* line, std::size_t length, std::vector<std::string_view>&
     const char* end_c = nullptr;
     try {
       end_c = QuotePolicy::find_next_column_end(begin);
-    } catch (const io::error::escaped_string_not_closed&) {
+    } catch (const ::io::error::escaped_string_not_closed&) {
       throw InputError(file, line_no, fields.size() + 1,
                        "unterminated quoted field " + shown(begin) + "; expected a closing '\"'");
     }

@@ -83,7 +83,7 @@ constexpr bool kRequiredColumn[kSlotCount] = {true,  false, true,  true,  true,
                                               false, false, false, false, false,
                                               false, false, false, false, false};
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using text::kNaN;
 
 int canonical_slot(std::string_view name) {
   for (int s = 0; s < kSlotCount; ++s)

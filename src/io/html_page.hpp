@@ -10,6 +10,11 @@
 
 namespace frictionid::html {
 
+// The pages are built by appending to one string h: line() adds s and its newline.
+inline void line(std::string& h, const std::string& s) {
+  (h += s) += '\n';
+}
+
 // Doctype, head with title and inline style, opening <body>.
 std::string page_start(const std::string& escaped_title);
 // The inline script (sortable tables, then plot sizes into the DOM), closing </body></html>.

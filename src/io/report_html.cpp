@@ -31,10 +31,8 @@ std::string anchor(const std::string& s) {
   return out;
 }
 
-// Each section below appends its lines to the page h; line() adds one and its newline.
-void line(std::string& h, const std::string& s) {
-  (h += s) += '\n';
-}
+// Each section below appends its lines to the page h (html::line).
+using html::line;
 
 // The answer at the top, one estimate per parameter, each kept on one line.
 void result_line(std::string& h, const FitResult& r) {

@@ -14,6 +14,13 @@
 
 namespace frictionid {
 
+// The estimate of the parameter called name in f, or none.
+inline const ParameterEstimate* find_param(const FitResult& f, const std::string& name) {
+  for (const auto& p : f.parameters)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
 // The 95 % interval of p that the reports show in p's row: the one r's interval method puts
 // first (ci95 for "model", else the sandwich or profile interval), except that under "model" a
 // parameter that has a profile interval (computed because it is nearly collinear with another

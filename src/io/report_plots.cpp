@@ -28,7 +28,7 @@
 namespace frictionid {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using text::kNaN;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // More distinct values than this in the colouring column are binned: one colour of the

@@ -89,9 +89,7 @@ std::string covariate_label(const std::string& name) {
   return name;
 }
 
-void line(std::string& h, const std::string& s) {
-  (h += s) += '\n';
-}
+using html::line;
 
 const SummaryParameter* find_parameter(const SummaryRow& row, const std::string& name) {
   for (const auto& p : row.parameters)

@@ -11,6 +11,9 @@
 
 namespace frictionid::text {
 
+// A missing value in a dataset column, a reading or a plot series.
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
 // Space or tab: what may surround a field or an option item.
 inline bool is_space(char c) {
   return c == ' ' || c == '\t';

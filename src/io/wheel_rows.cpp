@@ -15,7 +15,7 @@ namespace {
 
 constexpr double kPi = 3.141592653589793;
 constexpr double kHalfPi = 1.5707963267948966;  // the double nearest pi/2 (below it)
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using text::kNaN;
 
 const WheelSlotInfo kSlots[kWheelSlotCount] = {
     {"V", Quantity::Speed, "the speed of the contact centre [m/s], >= 0"},

@@ -46,6 +46,16 @@ bool catches(pid_t pid, int sig) {
   return false;
 }
 
+// The longest a signal may take to act. Under the sanitizers the build asks its stop check no less
+// often, but a node of its table takes 2-5 times as long, more when the linker keeps the -O0 copy
+// of the table's lookups (the sanitizer build compiles the code that reads and orchestrates at
+// -O0, and which copy of a shared template it keeps changes with how sources are batched).
+#ifdef FRICTIONID_SANITIZE
+constexpr double kSignalLatency = 3.0;
+#else
+constexpr double kSignalLatency = 1.0;
+#endif
+
 // A signal during a long model build (an exact fit with a 20,000-sample pressure table, whose
 // ring integrals cost seconds per build) acts within a second: exit 130, no report. The delays
 // count from when the fit catches the signal.
@@ -95,7 +105,7 @@ TEST(InputLimits, ASignalDuringAFitWithALargePressureTableActsWithinASecond) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
     ASSERT_TRUE(WIFEXITED(status)) << status;
     EXPECT_EQ(WEXITSTATUS(status), 130) << "signal " << sig << " after " << delay_ms << " ms";
-    EXPECT_LT(latency, 1.0) << "signal " << sig << " after " << delay_ms << " ms";
+    EXPECT_LT(latency, kSignalLatency) << "signal " << sig << " after " << delay_ms << " ms";
     EXPECT_FALSE(std::ifstream(report + "/report.json").good());
   }
 }
