@@ -422,6 +422,40 @@ TEST(SpotIntegralTable, ItsRayReadsTheTableAtCOverS) {
   }
 }
 
+// A ray's sums of layers, w s^(2+d) U(c/s) over many s (Ray::add, each reading's Chebyshev
+// weights gathered per piece and summed against its coefficients once), are those of the
+// table's own values at c/s: from every quadrant and the centre, in the polar, far and confocal
+// patches, with readings in random order, so that consecutive ones change piece, root cell and
+// patch.
+TEST(SpotIntegralTable, ItsRaySumsLayersAsTheTableValuesAtCOverSDo) {
+  for (double q : {0.4, 2.5, 0.1}) {
+    const ContactSpot spot = ContactSpot::ellipse(q);
+    const NamedLaw law{"uniform", PressureLaw<double>::uniform()};
+    const SpotIntegralTable& table = table_for(spot, law);
+    const double A0 = area(spot, law.law, q);
+    Uniform u(53);
+    double worst = 0.0;
+    for (int i = 0; i < 40; ++i) {
+      const double cx = i == 0 ? 0.0 : u.in(-2.0, 2.0), cy = i == 0 ? 0.0 : q * u.in(-2.0, 2.0);
+      const SpotIntegralTable::Ray ray = table.ray(cx, cy);
+      double want[12] = {}, scale = 0.0;
+      for (int k = 0; k < 60; ++k) {
+        const double s = std::pow(10.0, u.in(-3.0, 0.3)), w = u.in(-1.0, 1.0);
+        ray.add(s, w);
+        const auto v = table.channels_at(cx / s, cy / s);
+        for (std::size_t j = 0; j < 12; ++j)
+          want[j] += w * std::pow(s, 2 + SpotIntegrals::kChannelDegree[j]) * v[j];
+        scale += std::fabs(w) * s * s;
+      }
+      double got[12] = {};
+      ray.add_to(got);
+      for (std::size_t j = 0; j < 12; ++j)
+        worst = std::max(worst, std::fabs(got[j] - want[j]) / (A0 * scale));
+    }
+    EXPECT_LT(worst, 1e-14) << "q " << q;
+  }
+}
+
 TEST(SpotIntegralTable, EachIntegralIsEvenOrOddInEachCoordinateOfTheCentre) {
   // Reflecting x turns e_y and the weight x; reflecting y turns e_x and the weight y. Channels:
   // ex[0..2], ey[0..2], x_ey[0..2], y_ex[0..2].

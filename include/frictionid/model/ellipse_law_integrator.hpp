@@ -7,9 +7,9 @@
 // does not change under that scaling, so an integral whose weight has degree d (1, x or y, times
 // x or y for the moments) is s^(2+d) U(c/s), U the unit uniform ellipse's integral, and
 //   I(c) = L(1) U(c) + sum_k J_k s_k^(2+d) U(c/s_k) + ∫_0^1 (-L'(s)) s^(2+d) U(c/s) ds.   (9.8)
-// U comes from its table, read along the ray c/s (SpotIntegralTable::Ray: one series in the
-// radial coordinate a reading, ~0.2 us), so a point costs one 1-D integral in s instead of a
-// 2-D one: the rays of SpotIntegrator cut every ray and the angular range at each of a table
+// U comes from its table, read along the ray c/s (SpotIntegralTable::Ray: a reading adds its
+// weight times the radial Chebyshev polynomials to those of its piece, whose coefficients are
+// summed against them once a point), so a point costs one 1-D integral in s instead of a 2-D one: the rays of SpotIntegrator cut every ray and the angular range at each of a table
 // law's samples (39 ms a point for 41 samples), and left a law of more than 64 samples to their
 // rules across its kinks (6e-6 of f N for 100 samples). Here the samples cut only the s-range.
 //
@@ -27,8 +27,8 @@
 // by Newton's method), and then takes Gauss–Legendre with as many points as that distance asks for
 // 1e-12; parts next to rho_e stop at 1% of it and take Gauss–Legendre in t with s = sin^2(pi
 // t/2) across the part (crossing_rule: 20 points, where tanh-sinh took 51), a rim end that
-// keeps a fractional power tanh-sinh. 250-650 readings of U's table a point (0.05-0.3 ms) for
-// ellipses of aspect 0.1-3, about 4-7 more per sample of a table; within 1e-12 A0 of the rays
+// keeps a fractional power tanh-sinh. 250-650 readings of U's table a point (30-110 us) for
+// ellipses of aspect 0.1-4, about 4-7 more per sample of a table; within 1e-12 A0 of the rays
 // at their fine rules.
 //
 // A table of 64 samples or more is not cut at its samples. Its slope is
@@ -115,10 +115,11 @@ class EllipseLawIntegrator {
 
   SpotIntegrals operator()(double cx, double cy) const {
     double acc[12] = {};
-    const Ray ray = uniform_->ray(cx, cy);  // every reading is U(c/s)
-    if (rim_value_ != 0.0) layer(ray, 1.0, rim_value_, acc);
-    for (const PressureTable::Jump& j : jumps_) layer(ray, j.rho, j.drop, acc);
-    if (density_) slopes(cx, cy, ray, acc);
+    const Ray ray = uniform_->ray(cx, cy);  // every reading is U(c/s), summed by the ray
+    if (rim_value_ != 0.0) layer(ray, 1.0, rim_value_);
+    for (const PressureTable::Jump& j : jumps_) layer(ray, j.rho, j.drop);
+    if (density_) slopes(cx, cy, ray);
+    ray.add_to(acc);
     return SpotIntegrals::from_channels(acc);
   }
 
@@ -139,16 +140,11 @@ class EllipseLawIntegrator {
   // U's readings along the ray c/s from one centre (SpotIntegralTable::Ray).
   using Ray = decltype(std::declval<const Uniform&>().ray(0.0, 0.0));
 
-  // w times the uniform ellipse of elliptic radius s: w s^(2+d) U(c/s).
-  void layer(const Ray& ray, double s, double w, double* acc) const {
+  // w times the uniform ellipse of elliptic radius s, w s^(2+d) U(c/s), added to the ray's sums
+  // (Ray::add; operator() adds those to the channels).
+  static void layer(const Ray& ray, double s, double w) {
     if (w == 0.0 || !(s > 1e-100)) return;  // below that its share underflows
-    const std::array<double, 12> u = ray(s);
-    const double w2 = w * s * s, w3 = w2 * s, w4 = w3 * s;
-    for (std::size_t j = 0; j < 12; ++j)
-      acc[j] += (SpotIntegrals::kChannelDegree[j] == 0   ? w2
-                 : SpotIntegrals::kChannelDegree[j] == 1 ? w3
-                                                         : w4) *
-                u[j];
+    ray.add(s, w);
   }
 
   // A piece of the s-range in the variable w in [0, 1]: s = a + len w, or at the rim, for
@@ -200,7 +196,7 @@ class EllipseLawIntegrator {
   // The distance from (x, y) to the rim x^2 + (y/q)^2 = 1, from inside or outside.
   double rim_distance(double x, double y) const { return nearest_rim_point(q_, x, y).distance; }
 
-  void slopes(double cx, double cy, const Ray& ray, double* acc) const {
+  void slopes(double cx, double cy, const Ray& ray) const {
     const Centre c{cx, cy, std::hypot(cx, cy), std::hypot(cx, cy / q_), &ray};
     for (std::size_t k = 0; k + 1 < cuts_.size(); ++k) {
       const double a = cuts_[k], b = cuts_[k + 1];
@@ -210,24 +206,24 @@ class EllipseLawIntegrator {
         // the law's branch point there however close it comes.
         const Piece p{a, b - a, rim_power_};
         const double we = std::pow((1.0 - c.re) / p.len, 1.0 / p.m);
-        subdivide(c, p, 0.0, we, End::Rim, End::Centre, 0, acc);
-        subdivide(c, p, we, 1.0, End::Centre, End::None, 0, acc);
+        subdivide(c, p, 0.0, we, End::Rim, End::Centre, 0);
+        subdivide(c, p, we, 1.0, End::Centre, End::None, 0);
       } else if (b == 1.0 && rim_power_ > 1) {
         const double a1 = inside ? c.re : a;
-        if (inside) subdivide(c, {a, c.re - a, 1}, 0.0, 1.0, End::None, End::Centre, 0, acc);
+        if (inside) subdivide(c, {a, c.re - a, 1}, 0.0, 1.0, End::None, End::Centre, 0);
         subdivide(c, {a1, 1.0 - a1, rim_power_}, 0.0, 1.0, End::Rim,
-                  inside ? End::Centre : End::None, 0, acc);
+                  inside ? End::Centre : End::None, 0);
       } else if (product_ && k == 0) {
         // The product rule's piece, in dyadic parts whatever rho_e (the part that holds it is
         // halved until it is cut there, by_samples): their weights are stored (rule_).
         subdivide(c, Piece{a, b - a, 1, true}, 0.0, 1.0, End::None, b == 1.0 ? End::Rim : End::None,
-                  0, acc);
+                  0);
       } else {
         const Piece p{a, b - a, 1};
         const End last = b == 1.0 ? End::Rim : End::None;
         const double we = inside ? (c.re - a) / p.len : 1.0;
-        subdivide(c, p, 0.0, we, End::None, inside ? End::Centre : last, 0, acc);
-        if (inside) subdivide(c, p, we, 1.0, End::Centre, last, 0, acc);
+        subdivide(c, p, 0.0, we, End::None, inside ? End::Centre : last, 0);
+        if (inside) subdivide(c, p, we, 1.0, End::Centre, last, 0);
       }
     }
   }
@@ -241,7 +237,7 @@ class EllipseLawIntegrator {
   // tanh-sinh, which absorbs U's d^2 ln|d| at that end; so does a rim end where the law leaves
   // a fractional power.
   void subdivide(const Centre& c, const Piece& p, double w0, double w1, End end0, End end1,
-                 int depth, double* acc) const {
+                 int depth) const {
     const double h = 0.5 * (w1 - w0), wm = w0 + h;
     const bool at_rim = end0 == End::Rim || end1 == End::Rim;
     // In tau (m > 1) the rim's branch point is gone; a fractional power of w remains at w = 0,
@@ -266,9 +262,9 @@ class EllipseLawIntegrator {
       const bool singular = tiny || end0 == End::Centre || end1 == End::Centre || fractional_rim;
       if (product) {
         if (singular)
-          by_samples(c, s0, s1, end1 == End::Rim, acc);
+          by_samples(c, s0, s1, end1 == End::Rim);
         else
-          product_rule(c, p, depth, w0, s0, s1, z, acc);
+          product_rule(c, p, depth, w0, s0, s1, z);
         return;
       }
       // The crossing rule where the law's branch point keeps a part's length beyond its ends.
@@ -283,18 +279,18 @@ class EllipseLawIntegrator {
         const double omr =
             p.m == 1 && end1 == End::Rim ? 2.0 * h * p.len * g.from_right : p.one_minus_s(w);
         const double s = p.m == 1 ? p.s(w) : 1.0 - omr;
-        layer(*c.ray, s, -g.weight * 2.0 * h * p.ds_dw(w) * slope(piece, s, omr), acc);
+        layer(*c.ray, s, -g.weight * 2.0 * h * p.ds_dw(w) * slope(piece, s, omr));
       }
       return;
     }
-    subdivide(c, p, w0, wm, end0, End::None, depth + 1, acc);
-    subdivide(c, p, wm, w1, End::None, end1, depth + 1, acc);
+    subdivide(c, p, w0, wm, end0, End::None, depth + 1);
+    subdivide(c, p, wm, w1, End::None, end1, depth + 1);
   }
 
   // A part [s0, s1] next to a singularity of the smooth factor under the product rule: cut at
   // the samples within and at rho_e, each piece by tanh-sinh, which absorbs the singularity at
   // an end.
-  void by_samples(const Centre& c, double s0, double s1, bool to_rim, double* acc) const {
+  void by_samples(const Centre& c, double s0, double s1, bool to_rim) const {
     const std::vector<double> cuts = cuts_within(breaks_, s0, s1, c.re);
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       const double lo = cuts[k], hi = cuts[k + 1], len = hi - lo;
@@ -307,7 +303,7 @@ class EllipseLawIntegrator {
       for (const QuadratureNode& g : branch ? radial_rule() : crossing_rule()) {
         const double s = lo + len * g.from_left;
         const double omr = rim ? len * g.from_right : 1.0 - s;
-        layer(*c.ray, s, -g.weight * len * slope(piece, s, omr), acc);
+        layer(*c.ray, s, -g.weight * len * slope(piece, s, omr));
       }
     }
   }
@@ -315,7 +311,7 @@ class EllipseLawIntegrator {
   // The product rule on a part [s0, s1] (above, product_rule.hpp): w in [w0, w0 + 2^-depth] of
   // the piece p, whose weights rule_ holds when p is its interval.
   void product_rule(const Centre& c, const Piece& p, int depth, double w0, double s0, double s1,
-                    double z, double* acc) const {
+                    double z) const {
     const int want = product_points(bernstein_parameter(z), kLogProduct, 4);  // s^(2+d): four
     // The weights carry the rim's (1 - s^2)^(gamma - 1).
     const int n = p.dyadic ? DyadicProductRule::points(want) : want;
@@ -327,7 +323,7 @@ class EllipseLawIntegrator {
       product_rule_weights(slope_pieces_, s0, s1, n, 4, rim_exponent(), scratch);
     const double* x = chebyshev_points(n);
     const double mid = 0.5 * (s0 + s1), half = 0.5 * (s1 - s0);
-    for (int i = 0; i < n; ++i) layer(*c.ray, mid + half * x[i], W[i], acc);
+    for (int i = 0; i < n; ++i) layer(*c.ray, mid + half * x[i], W[i]);
   }
 
   // The rule of a part with rho_e(c) at (or within its length of) an end, where U goes like

@@ -64,9 +64,9 @@
 //
 // The points. Ellipse: SpotIntegrator, whose rays are closed forms under the power laws (uniform,
 // Hertz, parabolic, power:n: 6-20 us a point); under a table law, layers of the uniform ellipse
-// (ellipse_law_integrator.hpp) from that ellipse's own table, built first (45-75 us a point for 41
-// samples; from 64 a product rule whose readings do not grow with them, 45-155 us for 201-1001; the
-// table then takes 9,000-30,000 points, every sample a line its cells resolve). An annulus has no
+// (ellipse_law_integrator.hpp) from that ellipse's own table, built first (30-75 us a point for
+// 41 samples; from 64 a product rule whose readings do not grow with them; the table then takes
+// 9,000-66,000 points, every sample a line its cells resolve). An annulus has no
 // points of its own: it is the uniform ellipse less the one scaled by its inner radius, two
 // readings of the uniform table (built to a tolerance tightened by (1 - B^2)/(1 + B^2), the
 // annulus' load over what the two carry). Rectangle: RectStripIntegrator
@@ -299,38 +299,75 @@ class SpotIntegralTable {
   class Ray {
    public:
     std::array<double, kChannels> operator()(double s) const {
-      if (!t_->ray_by_slices() || centre_) return t_->channels_at(cx_ / s, cy_ / s);
-      const double P = P_ / s;
-      // Beyond the rim of an elongated ellipse the confocal angle changes along the ray.
-      if (t_->confocal_ && P > t_->near_) return t_->channels_at(cx_ / s, cy_ / s);
-      const std::size_t patch = P <= t_->near_ ? 0 : 1;
-      const double u0 = patch == 0 ? P : (r_ < HUGE_VAL ? s / r_ : 0.0), u1 = u1_[patch];
-      const Patch& g = t_->patches_[patch];
-      // The angle is the same at every reading: its cell once per patch, its cell coordinate
-      // once per root cell in a row.
-      if (i1_[patch] == kUnset) i1_[patch] = locate(g.breaks1, u1);
-      const std::size_t i0 = locate(g.breaks0, u0), i1 = i1_[patch];
-      const int r = g.roots[i0 * (g.breaks1.size() - 1) + i1];
       std::array<double, kChannels> v{};
-      if (r < 0) return v;  // not on an ellipse's patches
-      const Root& root = t_->roots_[static_cast<std::size_t>(r)];
-      if (r != last_root_) {
-        last_root_ = r;
-        last_s1_ = root.a1.s_of(u1);
-      }
-      const double s0 = root.a0.s_of(u0), s1 = last_s1_;
-      const TreeNode* node = &t_->tree_[static_cast<std::size_t>(root.tree)];
-      while (node->dir >= 0)
-        node = &t_->tree_[static_cast<std::size_t>(
-            node->child[(node->dir == 0 ? s0 : s1) >= node->mid])];
-      const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(node->leaf)];
-      const double* g_row = slice(node->leaf, s1);
-      const double x = std::clamp((2.0 * s0 - leaf.a0 - leaf.b0) / (leaf.b0 - leaf.a0), -1.0, 1.0);
+      double s0 = 0.0, s1 = 0.0;
+      int index = -1;
+      if (!find(s, s0, s1, index)) return t_->channels_at(cx_ / s, cy_ / s);
+      if (index < 0) return v;  // not on an ellipse's patches
+      const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(index)];
+      const double* g_row = slice(index, s1);
       double tx[kStoreDegree + 1];
-      chebyshev(x, leaf.n0, tx);
+      chebyshev(leaf_coordinate(leaf.a0, leaf.b0, s0), leaf.n0, tx);
       for (int k = 0; k <= leaf.n0; ++k, g_row += kChannels)
         for (int j = 0; j < kChannels; ++j) v[j] += tx[k] * g_row[j];
       return v;
+    }
+
+    // Adds w s^(2+d) U(c/s) to the ray's sums, d each channel's degree
+    // (SpotIntegrals::kChannelDegree: a layer of physics.md (9.8)); add_to then adds the sums to
+    // twelve channels. A reading adds its three weights times T_k(x) to its piece's Chebyshev
+    // weights, 3 (n0 + 1) products where operator() and the layer take 24 (n0 + 1), and each
+    // piece's coefficients are summed against them once, in add_to: the twelve-channel series
+    // at every reading took a third of a table law's build.
+    void add(double s, double w) const {
+      const double w2 = w * s * s, w3 = w2 * s, w4 = w3 * s;
+      double s0 = 0.0, s1 = 0.0;
+      int index = -1;
+      if (!find(s, s0, s1, index)) {
+        const std::array<double, kChannels> u = t_->channels_at(cx_ / s, cy_ / s);
+        for (int j = 0; j < kChannels; ++j)
+          direct_[j] += (SpotIntegrals::kChannelDegree[j] == 0   ? w2
+                         : SpotIntegrals::kChannelDegree[j] == 1 ? w3
+                                                                 : w4) *
+                        u[j];
+        return;
+      }
+      if (index < 0) return;
+      const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(index)];
+      double* W = weights(index, s1);
+      double tx[kStoreDegree + 1];
+      chebyshev(leaf_coordinate(leaf.a0, leaf.b0, s0), leaf.n0, tx);
+      for (int k = 0; k <= leaf.n0; ++k) {
+        W[k] += w2 * tx[k];
+        W[kWeightRow + k] += w3 * tx[k];
+        W[2 * kWeightRow + k] += w4 * tx[k];
+      }
+    }
+
+    void add_to(double* acc) const {
+      double out[kChannels] = {};
+      for (const Visit& v : visits_) {
+        const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(v.leaf)];
+        const double y =
+            std::clamp((2.0 * v.s1 - leaf.a1 - leaf.b1) / (leaf.b1 - leaf.a1), -1.0, 1.0);
+        double ty[kStoreDegree + 1];
+        chebyshev(y, leaf.n1, ty);
+        const double* W = weights_.data() + v.offset;
+        const double* c = t_->coeff_.data() + leaf.offset;
+        double sum[kChannels] = {};
+        for (int l = 0; l <= leaf.n1; ++l) {
+          const int len = leaf.row_len[static_cast<std::size_t>(l)];
+          for (int k = 0; k < len; ++k, c += kChannels) {
+            const double a[3] = {ty[l] * W[k], ty[l] * W[kWeightRow + k],
+                                 ty[l] * W[2 * kWeightRow + k]};
+            for (int j = 0; j < kChannels; ++j)
+              sum[j] += a[SpotIntegrals::kChannelDegree[j]] * c[j];
+          }
+        }
+        for (int j = 0; j < kChannels; ++j) out[j] += sum[j];
+      }
+      for (int j = 0; j < kChannels; ++j)
+        acc[j] += ((fx_ && kOddX[j]) != (fy_ && kOddY[j]) ? -out[j] : out[j]) + direct_[j];
     }
 
    private:
@@ -344,6 +381,74 @@ class SpotIntegralTable {
       centre_ = !(P_ > 0.0);
       u1_[0] = std::atan2(ay / t.q_, ax);
       u1_[1] = std::atan2(ay, ax);
+    }
+
+    // The piece that holds c/s by its index (-1: none, outside the ellipse's patches) and its
+    // root cell's coordinates there; false where the ray is not read by pieces (channels_at).
+    bool find(double s, double& s0, double& s1, int& index) const {
+      if (!t_->ray_by_slices() || centre_) return false;
+      const double P = P_ / s;
+      // Beyond the rim of an elongated ellipse the confocal angle changes along the ray.
+      if (t_->confocal_ && P > t_->near_) return false;
+      const std::size_t patch = P <= t_->near_ ? 0 : 1;
+      const double u0 = patch == 0 ? P : (r_ < HUGE_VAL ? s / r_ : 0.0), u1 = u1_[patch];
+      const Patch& g = t_->patches_[patch];
+      // The angle is the same at every reading: its cell once per patch, its cell coordinate
+      // once per root cell in a row.
+      if (i1_[patch] == kUnset) i1_[patch] = locate(g.breaks1, u1);
+      // Consecutive readings mostly fall in the root cell and the piece of the last one: both
+      // are kept, and the search and the descent (a quarter of a reading) skipped.
+      if (!(patch == last_patch_ && u0 >= last_lo_ && u0 < last_hi_)) {
+        const std::size_t i0 = locate(g.breaks0, u0);
+        last_patch_ = patch;
+        last_lo_ = g.breaks0[i0];
+        last_hi_ = i0 + 2 == g.breaks0.size() ? HUGE_VAL : g.breaks0[i0 + 1];
+        const int r = g.roots[i0 * (g.breaks1.size() - 1) + i1_[patch]];
+        if (r != last_root_) {
+          last_root_ = r;
+          last_leaf_ = -1;
+          if (r >= 0) last_s1_ = t_->roots_[static_cast<std::size_t>(r)].a1.s_of(u1);
+        }
+      }
+      if (last_root_ < 0) return true;
+      const Root& root = t_->roots_[static_cast<std::size_t>(last_root_)];
+      s0 = root.a0.s_of(u0);
+      s1 = last_s1_;
+      if (last_leaf_ >= 0) {
+        const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(last_leaf_)];
+        if (s0 >= leaf.a0 && s0 < leaf.b0) {
+          index = last_leaf_;
+          return true;
+        }
+      }
+      const TreeNode* node = &t_->tree_[static_cast<std::size_t>(root.tree)];
+      while (node->dir >= 0)
+        node = &t_->tree_[static_cast<std::size_t>(
+            node->child[(node->dir == 0 ? s0 : s1) >= node->mid])];
+      index = last_leaf_ = node->leaf;
+      return true;
+    }
+
+    // The radial coordinate in [-1, 1] of the piece [a0, b0] (root cell coordinates).
+    static double leaf_coordinate(double a0, double b0, double s0) {
+      return std::clamp((2.0 * s0 - a0 - b0) / (b0 - a0), -1.0, 1.0);
+    }
+
+    // The Chebyshev weights of piece `index` for the three channel degrees (kWeightRow each),
+    // zero at the first reading in that piece.
+    double* weights(int index, double s1) const {
+      for (std::size_t i = 0; i < visits_.size(); ++i) {
+        const std::size_t k = (last_visit_ + i) % visits_.size();
+        if (visits_[k].leaf == index) {
+          last_visit_ = k;
+          return weights_.data() + visits_[k].offset;
+        }
+      }
+      const std::size_t at = weights_.size();
+      weights_.resize(at + 3 * kWeightRow, 0.0);
+      last_visit_ = visits_.size();
+      visits_.push_back({index, s1, at});
+      return weights_.data() + at;
     }
 
     // Piece `index`'s coefficients summed over its rows with the weights T_l(y) of this ray's
@@ -392,6 +497,21 @@ class SpotIntegralTable {
     mutable std::size_t i1_[2] = {kUnset, kUnset};  // the angle's cell in each patch
     mutable int last_root_ = -1;                    // and its coordinate in that root cell
     mutable double last_s1_ = 0.0;
+    // The last reading's patch, the radial range [lo, hi) of its root cell there, and its piece.
+    mutable std::size_t last_patch_ = kUnset;
+    mutable double last_lo_ = 0.0, last_hi_ = 0.0;
+    mutable int last_leaf_ = -1;
+    // add(): each piece read, its angular coordinate and the offset of its weights.
+    struct Visit {
+      int leaf;
+      double s1;
+      std::size_t offset;
+    };
+    static constexpr int kWeightRow = 17;  // kStoreDegree + 1
+    mutable std::vector<Visit> visits_;
+    mutable std::vector<double> weights_;
+    mutable std::size_t last_visit_ = 0;
+    mutable double direct_[kChannels] = {};  // readings by channels_at
   };
 
   Ray ray(double cx, double cy) const { return Ray(*this, cx, cy); }
@@ -436,6 +556,7 @@ class SpotIntegralTable {
   int start_degree() const { return kind_ == SpotKind::Map ? kMapStartDegree : kStartDegree; }
   static constexpr int kMaxSampleDegree = 64;
   static constexpr int kStoreDegree = 16;
+  static_assert(Ray::kWeightRow == kStoreDegree + 1, "a ray's weights hold a piece's degrees");
   static constexpr int kMaxDepth = 24;
   static constexpr double kMaxRate = 0.95;  // slowest decay the error estimate assumes
   static constexpr double kSafety = 1.1;    // on the degree extrapolated for a cell
