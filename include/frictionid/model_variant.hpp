@@ -93,13 +93,14 @@ inline std::shared_ptr<const model::RingIntegralTable> ring_table_for_rows(
 // from the same rays, strips or layers as the rows (an annulus on an ellipse's row costs two: the
 // uniform ellipse at c and at c/B); they crowd where the integrals are hardest, next to the rim,
 // the edges and a map's grid lines, and cost 0.7-1.7 times a row of a test design. A reading
-// costs ~0.3 us. The points a table needs range from ~2,400 (ellipse:0.6, Hertz) to ~66,000 (the
-// 13 x 9 footprint map) and 190,000 (a rough 15 x 15 map), and a map's build time grows with the
-// square of its cells. So a build is attempted with a budget of as many points as the rows would
-// cost (spot_table_budget) and abandoned before it would exceed it (model::SpotTableOverBudget):
-// the rows are then integrated, and the attempt has cost about what they do. Either way one pass
-// costs at most ~2-3 times the cheaper of the two (experiments/README.md, "Contact spots").
-// Below kSpotTableMinRows rows no table is attempted.
+// costs ~0.3 us (a map's 0.6-1.1 us). The points a table needs range from ~2,400 (ellipse:0.6,
+// Hertz) to ~66,000 (a table law of 41 samples on ellipse:0.1 or ellipse:4) and 97,000 (a rough
+// random 20 x 20 map), and a map's build time grows with the square of its cells. So a build is
+// attempted with a budget of as many points as the rows would cost (spot_table_budget) and
+// abandoned before it would exceed it (model::SpotTableOverBudget): the rows are then integrated,
+// and the attempt has cost about what they do. Either way one pass costs at most ~2-3 times the
+// cheaper of the two (experiments/README.md, "Contact spots"). Below kSpotTableMinRows rows no
+// table is attempted.
 inline constexpr std::size_t kSpotTableMinRows = 2000;
 
 inline std::size_t spot_table_budget(const model::ContactSpot& spot,

@@ -706,6 +706,49 @@ TEST(SpotIntegralTable, MapsMatchTheStripIntegrationOverThePlane) {
   }
 }
 
+// A map's table holds each cell's integrals less those of its near cells, which a reading adds
+// by their corner sums: read with dual numbers, that sum carries its derivatives along c with
+// the interpolant's. Against central differences of the table itself, inside grid cells,
+// outside the grid next to its edges and corners, and beyond the box.
+TEST(SpotIntegralTable, AMapsTableCarriesTheDerivativesAlongTheCentre) {
+  Uniform u(37);
+  const auto map = random_map(u);
+  const SpotIntegralTable table(ContactSpot::pressure_map(map), PressureLaw<double>::uniform(), 1.0,
+                                {}, 2);
+  const double A0 = map_moments(*map).A0;
+  using J = ceres::Jet<double, 2>;
+  const double x0 = map->x.front(), x1 = map->x.back(), y0 = map->y.front(), y1 = map->y.back();
+  std::vector<std::array<double, 2>> centres;
+  // Inside: the middle of every grid cell and a random point in each, 1e-3 from its edges.
+  for (std::size_t j = 0; j + 1 < map->ny(); ++j)
+    for (std::size_t i = 0; i + 1 < map->nx(); ++i) {
+      const double a = map->x[i], b = map->x[i + 1], c = map->y[j], d = map->y[j + 1];
+      centres.push_back({0.5 * (a + b), 0.5 * (c + d)});
+      centres.push_back({u.in(a + 1e-3, b - 1e-3), u.in(c + 1e-3, d - 1e-3)});
+    }
+  // Outside: next to an edge, next to a corner, and 3 map widths away.
+  centres.push_back({x1 + 0.01, 0.5 * (map->y[1] + map->y[2])});
+  centres.push_back({0.3 * x0 + 0.7 * x1, y0 - 0.02});
+  centres.push_back({x0 - 0.05, y1 + 0.04});
+  centres.push_back({3.0 * (x1 - x0), -2.0 * (y1 - y0)});
+  const double h = 1e-6;
+  for (const auto& c : centres) {
+    const auto d = table.channels_at(J(c[0], 0), J(c[1], 1));
+    for (int dir = 0; dir < 2; ++dir) {
+      const double dx = dir == 0 ? h : 0.0, dy = dir == 1 ? h : 0.0;
+      const auto plus = table.channels_at(c[0] + dx, c[1] + dy);
+      const auto minus = table.channels_at(c[0] - dx, c[1] - dy);
+      const auto at = table.channels_at(c[0], c[1]);
+      for (std::size_t k = 0; k < 12; ++k) {
+        const double fd = (plus[k] - minus[k]) / (2.0 * h);
+        EXPECT_NEAR(d[k].a, at[k], 1e-15 * A0) << "channel " << k;
+        EXPECT_NEAR(d[k].v[dir], fd, 1e-6 * A0 + 1e-6 * std::fabs(fd))
+            << "channel " << k << " along " << dir << " at (" << c[0] << ", " << c[1] << ")";
+      }
+    }
+  }
+}
+
 TEST(SpotIntegralTable, AMapsTableServesThatMapObjectOnly) {
   auto map = std::make_shared<PressureMap>();
   map->x = {-1.0, 1.0};

@@ -26,18 +26,22 @@ struct MapCornerNode {
 };
 
 // The moments X_ij = ∫ sigma0 a^i e^j e/r and Y_ij = ∫ sigma0 a^i e^j a/r over the cells whose
-// nodes are added, about one centre c.
-class MapCornerMoments {
+// nodes are added, about one centre c. E is double, or a dual number whose parts carry the
+// derivatives along c (a pressure map's table adds the cells next to c this way,
+// spot_integral_table.hpp).
+template <typename E>
+class BasicMapCornerMoments {
  public:
-  MapCornerMoments(double cx, double cy) : cx_(cx), cy_(cy) {}
+  BasicMapCornerMoments(const E& cx, const E& cy) : cx_(cx), cy_(cy) {}
 
   void add(const MapCornerNode& n) {
-    const double a = n.x - cx_, e = n.y - cy_;
-    double g[18];
+    const E a = n.x - cx_, e = n.y - cy_;
+    E g[18];
     primitives(a, e, g);
     // sigma0 about c: A + B a + C e + D a e.
-    const double A = n.alpha - n.beta * a - n.gamma * e + n.delta * a * e;
-    const double B = n.beta - n.delta * e, C = n.gamma - n.delta * a, D = n.delta;
+    const E A = n.alpha - n.beta * a - n.gamma * e + n.delta * a * e;
+    const E B = n.beta - n.delta * e, C = n.gamma - n.delta * a;
+    const double D = n.delta;
     x00_ += A * g[k01] + B * g[k11] + C * g[k02] + D * g[k12];
     x10_ += A * g[k11] + B * g[k21] + C * g[k12] + D * g[k22];
     x01_ += A * g[k02] + B * g[k12] + C * g[k03] + D * g[k13];
@@ -52,15 +56,15 @@ class MapCornerMoments {
 
   // Adds the twelve channels (SpotIntegrals::channels' order) to acc: x = a + c_x, y = e + c_y,
   // e_x = -e/r, e_y = a/r.
-  void add_channels(double* acc) const {
-    const double cx = cx_, cy = cy_;
-    const double ex = -x00_, ex_x = -(x10_ + cx * x00_), ex_y = -(x01_ + cy * x00_);
-    const double ex_xy = -(x11_ + cy * x10_ + cx * x01_ + cx * cy * x00_);
-    const double ex_yy = -(x02_ + 2.0 * cy * x01_ + cy * cy * x00_);
-    const double ey = y00_, ey_x = y10_ + cx * y00_, ey_y = y01_ + cy * y00_;
-    const double ey_xx = y20_ + 2.0 * cx * y10_ + cx * cx * y00_;
-    const double ey_xy = y11_ + cy * y10_ + cx * y01_ + cx * cy * y00_;
-    const double v[12] = {ex, ex_x, ex_y, ey, ey_x, ey_y, ey_x, ey_xx, ey_xy, ex_y, ex_xy, ex_yy};
+  void add_channels(E* acc) const {
+    const E cx = cx_, cy = cy_;
+    const E ex = -x00_, ex_x = -(x10_ + cx * x00_), ex_y = -(x01_ + cy * x00_);
+    const E ex_xy = -(x11_ + cy * x10_ + cx * x01_ + cx * cy * x00_);
+    const E ex_yy = -(x02_ + 2.0 * cy * x01_ + cy * cy * x00_);
+    const E ey = y00_, ey_x = y10_ + cx * y00_, ey_y = y01_ + cy * y00_;
+    const E ey_xx = y20_ + 2.0 * cx * y10_ + cx * cx * y00_;
+    const E ey_xy = y11_ + cy * y10_ + cx * y01_ + cx * cy * y00_;
+    const E v[12] = {ex, ex_x, ex_y, ey, ey_x, ey_y, ey_x, ey_xx, ey_xy, ex_y, ex_xy, ex_yy};
     for (int k = 0; k < 12; ++k) acc[k] += v[k];
   }
 
@@ -73,37 +77,39 @@ class MapCornerMoments {
 
   // ln(u + r) with u + r computed without cancellation (u < 0: (r^2 - u^2)/(r - u)); 0 where it
   // is -infinity, where its factor in every Phi vanishes (the other coordinate is 0).
-  static double log_plus(double u, double v2, double r) {
-    if (u >= 0.0) return r > 0.0 ? std::log(u + r) : 0.0;
-    return v2 > 0.0 ? std::log(v2 / (r - u)) : 0.0;
+  static E log_plus(const E& u, const E& v2, const E& r) {
+    using std::log;
+    if (u >= 0.0) return r > 0.0 ? E(log(u + r)) : E(0.0);
+    return v2 > 0.0 ? E(log(v2 / (r - u))) : E(0.0);
   }
 
   // Phi_kl(a, e), in the order of the enum (scripts/derive-map-corner-primitives).
-  static void primitives(double a, double e, double* phi) {
-    const double a2 = a * a, a3 = a2 * a, a4 = a2 * a2, a5 = a4 * a, a6 = a3 * a3;
-    const double e2 = e * e, e3 = e2 * e, e4 = e2 * e2, e5 = e4 * e, e6 = e3 * e3;
-    const double r = std::sqrt(a2 + e2), r3 = r * r * r, r5 = r3 * r * r;
-    const double La = log_plus(a, e2, r), Le = log_plus(e, a2, r);
-    const double t0 = a * r;
-    const double t1 = La * e3;
-    const double t2 = Le * a3;
-    const double t3 = e * t0;
-    const double t4 = La * e4;
-    const double t5 = a * r3;
-    const double t6 = -2 * t5;
-    const double t7 = e2 * t0;
-    const double t8 = La * e5;
-    const double t9 = Le * a5;
-    const double t10 = e * r3;
-    const double t11 = a * t10;
-    const double t12 = 5 * e3 * t0;
-    const double t13 = e3 * r;
-    const double t14 = Le * a4;
-    const double t15 = 5 * e2 * r3;
-    const double t16 = e3 * r3;
-    const double t17 = 3 * Le * a6 - 3 * e * r5 + 3 * e5 * r;
-    const double t18 = a * r5;
-    const double t19 = 3 * La * e6 + 3 * e4 * t0;
+  static void primitives(const E& a, const E& e, E* phi) {
+    using std::sqrt;
+    const E a2 = a * a, a3 = a2 * a, a4 = a2 * a2, a5 = a4 * a, a6 = a3 * a3;
+    const E e2 = e * e, e3 = e2 * e, e4 = e2 * e2, e5 = e4 * e, e6 = e3 * e3;
+    const E r = sqrt(a2 + e2), r3 = r * r * r, r5 = r3 * r * r;
+    const E La = log_plus(a, e2, r), Le = log_plus(e, a2, r);
+    const E t0 = a * r;
+    const E t1 = La * e3;
+    const E t2 = Le * a3;
+    const E t3 = e * t0;
+    const E t4 = La * e4;
+    const E t5 = a * r3;
+    const E t6 = -2.0 * t5;
+    const E t7 = e2 * t0;
+    const E t8 = La * e5;
+    const E t9 = Le * a5;
+    const E t10 = e * r3;
+    const E t11 = a * t10;
+    const E t12 = 5.0 * e3 * t0;
+    const E t13 = e3 * r;
+    const E t14 = Le * a4;
+    const E t15 = 5.0 * e2 * r3;
+    const E t16 = e3 * r3;
+    const E t17 = 3.0 * Le * a6 - 3.0 * e * r5 + 3.0 * e5 * r;
+    const E t18 = a * r5;
+    const E t19 = 3.0 * La * e6 + 3.0 * e4 * t0;
     phi[0] = (1.0 / 2.0) * La * e2 + (1.0 / 2.0) * t0;                 // (0, 1)
     phi[1] = (1.0 / 3.0) * t1 - 1.0 / 6.0 * t2 + (1.0 / 6.0) * t3;     // (0, 2)
     phi[2] = (1.0 / 4.0) * t4 + (1.0 / 12.0) * t6 + (1.0 / 4.0) * t7;  // (0, 3)
@@ -126,9 +132,11 @@ class MapCornerMoments {
     phi[17] = -7.0 / 24.0 * e2 * t5 + (1.0 / 6.0) * t18 + (1.0 / 48.0) * t19;          // (4, 1)
   }
 
-  double cx_, cy_;
-  double x00_ = 0, x10_ = 0, x01_ = 0, x11_ = 0, x02_ = 0;
-  double y00_ = 0, y10_ = 0, y01_ = 0, y20_ = 0, y11_ = 0;
+  E cx_, cy_;
+  E x00_ = E(0.0), x10_ = E(0.0), x01_ = E(0.0), x11_ = E(0.0), x02_ = E(0.0);
+  E y00_ = E(0.0), y10_ = E(0.0), y01_ = E(0.0), y20_ = E(0.0), y11_ = E(0.0);
 };
+
+using MapCornerMoments = BasicMapCornerMoments<double>;
 
 }  // namespace frictionid::model

@@ -82,6 +82,19 @@ class MapStripIntegrator {
     return SpotIntegrals::from_channels(acc);
   }
 
+  // The nodes of the grid cells [i0, i1) x [j0, j1) (those with a nonzero sample), with sigma0
+  // about each summed over its cells among them: their corner sums (MapCornerMoments) are those
+  // cells' integrals wherever c lies. A map's table adds the cells next to c this way.
+  std::vector<MapCornerNode> corner_nodes(std::size_t i0, std::size_t i1, std::size_t j0,
+                                          std::size_t j1) const {
+    std::vector<MapCornerNode> out;
+    for_each_node(
+        i0, i1, j0, j1,
+        [=](std::size_t i, std::size_t j) { return i >= i0 && i < i1 && j >= j0 && j < j1; },
+        [&out](const MapCornerNode& n) { out.push_back(n); });
+    return out;
+  }
+
   // How many grid cells around c the corner sums take (0: none, every cell by itself).
   std::size_t window_cells(double cx, double cy) const { return window(cx, cy).cells(); }
 
@@ -166,8 +179,18 @@ class MapStripIntegrator {
 
   // Corner sums over the window's nonzero cells, node by node.
   void corner_sums(double cx, double cy, const Window& w, double* acc) const {
-    const std::size_t i0 = w.i0, i1 = w.i1, j0 = w.j0, j1 = w.j1;
     MapCornerMoments moments(cx, cy);
+    for_each_node(
+        w.i0, w.i1, w.j0, w.j1, [&w](std::size_t i, std::size_t j) { return w.holds(i, j); },
+        [&moments](const MapCornerNode& n) { moments.add(n); });
+    moments.add_channels(acc);
+  }
+
+  // Every node of the cells [i0, i1) x [j0, j1) that `holds` admits (nonzero cells only), with
+  // sigma0 about it summed over those of its four cells with their corners' signs, to `sink`.
+  template <typename Holds, typename Sink>
+  void for_each_node(std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1,
+                     const Holds& holds, const Sink& sink) const {
     const std::size_t nx = x_.size() - 1;
     for (std::size_t j = j0; j <= j1; ++j)
       for (std::size_t i = i0; i <= i1; ++i) {
@@ -179,7 +202,7 @@ class MapStripIntegrator {
             if ((dx == 0 && i == 0) || (dy == 0 && j == 0)) continue;
             const std::size_t ci = i + static_cast<std::size_t>(dx) - 1;
             const std::size_t cj = j + static_cast<std::size_t>(dy) - 1;
-            if (!w.holds(ci, cj)) continue;
+            if (!holds(ci, cj)) continue;
             const int k = index_[cj * nx + ci];
             if (k < 0) continue;
             const Corner& q = cells_[static_cast<std::size_t>(k)].corner[(1 - dy) * 2 + (1 - dx)];
@@ -189,9 +212,8 @@ class MapStripIntegrator {
             n.delta += q.delta;
             any = true;
           }
-        if (any) moments.add(n);
+        if (any) sink(n);
       }
-    moments.add_channels(acc);
   }
 
   // One cell's integrals by the rules below, added to acc.

@@ -33,12 +33,15 @@
 //    e = (sin gamma, -cos gamma), from the moments A0, Axx, Ayy; R_near is 1.5 times the spot's
 //    largest radius, which bounds the expansion in t (radius 1/max|r|).
 //  - map: no symmetry, so the whole plane: a Cartesian box about the map's centre holding the
-//    disk of radius R_near (1.5 times its half-diagonal), every grid line a cell boundary and
-//    each interval between two lines one root cell graded towards both (sin^2 of a quarter
-//    turn: the kinks' d^3 ln d and the edges' jumps, d^2 ln d, turn into (1 -+ s)^6 ln and
-//    (1 -+ s)^4 ln), one cell graded towards each edge outside it; the far patch about the map's
-//    centre over the full turn, with the map's own moments (Ax, Ay, Axy need not vanish). Its
-//    points come from MapStripIntegrator (map_strip_integrator.hpp).
+//    disk of radius R_near (1.5 times its half-diagonal), every grid line a cell boundary, each
+//    interval between two lines one root cell and one cell from each edge out; the far patch
+//    about the map's centre over the full turn, with the map's own moments (Ax, Ay, Axy need
+//    not vanish). Its points come from MapStripIntegrator (map_strip_integrator.hpp). The
+//    integrals kink across every grid line (d^3 ln d) and jump across the edges (d^2 ln d), but
+//    on a root cell only the grid cells that touch it are not smooth: each root cell holds the
+//    integrals less theirs (its near cells, up to 3 x 3), which a reading adds back by their
+//    corner sums (map_corner_sums.hpp, ~1 us), so that what it holds is analytic on it and its
+//    cells need no grading.
 // Each patch is a grid of root cells. On both sides of every singular line (and about every
 // corner) a cell of width 0.35 is graded as u = u_s +- w ((1 -+ s)/2)^3 in its coordinate
 // s in [-1, 1] (powers 4 and 6 for the ring law's d ln d): d^2 ln d becomes s^6 ln s, which a
@@ -58,9 +61,9 @@
 // row only the coefficients that matter. The build is deterministic: the same bits on any number
 // of threads. 2,000-8,000 points for an ellipse, 8,000-23,000 for a rectangle at q = 0.4-2.5;
 // an ellipse of aspect 0.001-0.3 5,000-12,000 (the ring law up to 30,000), of aspect 4 11,000;
-// a map ~450 per grid cell
-// (degree 9, then 18: 66,000 for the 13 x 9 footprint, 1.7 s of CPU time at ~14 us a point;
-// 190,000 and 10.5 s for a rough random 15 x 15 grid).
+// a map ~150 per grid cell (degree 12 each way) and ~500 per outside cell (36 away from the edge):
+// 29,000 for the 13 x 9 footprint, 63,000 for a rough random 15 x 15 grid (66,000 and 192,000
+// with the cells graded, before the near cells were held apart).
 //
 // The points. Ellipse: SpotIntegrator, whose rays are closed forms under the power laws (uniform,
 // Hertz, parabolic, power:n: 6-20 us a point); under a table law, layers of the uniform ellipse
@@ -78,7 +81,7 @@
 // uniform, Hertz, parabolic and annulus laws and q from 0.4 to 2.5, measured at 4,000 random
 // centres including the spot's centre, the rim and edges to 1e-8, the corners, and |c| up to
 // 1e6 (tests/model/spot_integral_table_test.cpp); stats().estimate is the build's own worst
-// estimate. Maps: within 5e-12 A0 of MapStripIntegrator for the footprint, 5e-11 for a rough
+// estimate. Maps: within 2e-11 A0 of MapStripIntegrator for the footprint, 3e-11 for a rough
 // random 15 x 15 grid (the check points accept 5e-11). Cost: experiments/README.md, "Contact
 // spots".
 #pragma once
@@ -551,8 +554,9 @@ class SpotIntegralTable {
   static constexpr double kCheckTolerance = 5e-11;   // the cell's check point / A0
   static constexpr double kStoreTolerance = 2e-11;   // dropped by the cut into pieces / A0
   static constexpr int kStartDegree = 8;
-  // A map's cells between grid lines settle at degree ~18 (Builder::grow).
-  static constexpr int kMapStartDegree = 9;
+  // A map's cells between grid lines settle at degree 12 (make_map_roots): 9, then 18, took
+  // 20 % more points on a rough random grid, 8 then 16 50 % more.
+  static constexpr int kMapStartDegree = 12;
   int start_degree() const { return kind_ == SpotKind::Map ? kMapStartDegree : kStartDegree; }
   static constexpr int kMaxSampleDegree = 64;
   static constexpr int kStoreDegree = 16;
@@ -794,7 +798,49 @@ class SpotIntegralTable {
         for (int j = 0; j < kChannels; ++j) row[j] += tx[k] * c[j];
       for (int j = 0; j < kChannels; ++j) acc[j] += ty[l] * row[j];
     }
+    if (!near_nodes_.empty()) add_near(r, ax, ay, acc);
     for (int j = 0; j < kChannels; ++j) v[j] = acc[j];
+  }
+
+  // A map's near cells (near_nodes_) of root cell r at c, added to acc by their corner sums.
+  template <typename E>
+  void add_near(int r, const E& cx, const E& cy, E* acc) const {
+    const std::vector<MapCornerNode>& nodes = near_nodes_[static_cast<std::size_t>(r)];
+    if (nodes.empty()) return;
+    BasicMapCornerMoments<E> moments(cx, cy);
+    for (const MapCornerNode& n : nodes) moments.add(n);
+    moments.add_channels(acc);
+  }
+
+  // A map's integrals are not smooth across the edges of its grid cells (sigma0 kinks there,
+  // d^3 ln d, or jumps at the map's edges, d^2 ln d), but only those of the cells whose closure
+  // a root cell's closure meets reach it: the others' edges keep at least a grid cell away. So
+  // each root cell of the box holds the integrals less those cells' (its near cells: up to
+  // 3 x 3 about a grid cell, the edge's cells next to one outside), whose corner sums are
+  // exact wherever c lies and cost ~1 us a reading, and what it holds is analytic on it.
+  void make_near_nodes(const MapStripIntegrator& strips) {
+    const PressureMap& m = *map_;
+    near_nodes_.assign(roots_.size(), {});
+    // The grid cells [lo, hi) whose closed interval meets [a, b] along one axis.
+    auto touching = [](const std::vector<double>& g, double a, double b, std::size_t& lo,
+                       std::size_t& hi) {
+      lo = g.size();
+      hi = 0;
+      for (std::size_t i = 0; i + 1 < g.size(); ++i)
+        if (g[i] <= b && g[i + 1] >= a) {
+          lo = std::min(lo, i);
+          hi = i + 1;
+        }
+      if (lo >= hi) lo = hi = 0;
+    };
+    for (std::size_t r = 0; r < roots_.size(); ++r) {
+      const Root& root = roots_[r];
+      if (patches_[static_cast<std::size_t>(root.patch)].coords != Coords::Box) continue;
+      std::size_t i0, i1, j0, j1;
+      touching(m.x, root.a0.lo, root.a0.hi, i0, i1);
+      touching(m.y, root.a1.lo, root.a1.hi, j0, j1);
+      if (i1 > i0 && j1 > j0) near_nodes_[r] = strips.corner_nodes(i0, i1, j0, j1);
+    }
   }
 
   static std::size_t locate(const std::vector<double>& breaks, double u) {
@@ -928,23 +974,26 @@ class SpotIntegralTable {
     patches_.push_back(std::move(p));
   }
 
-  // A map (docs/physics.md §9.1): the integrals are not smooth across the grid lines (sigma0
-  // kinks there, d^3 ln d, or jumps at the map's edges, d^2 ln d), so every line is a cell
-  // boundary and each interval between two lines is one root cell graded towards both (power
-  // 0); outside the grid one cell graded towards the edge out to the box that holds the disk
-  // |c - centre| <= R_near. The far patch turns about the map's centre.
+  // A map (docs/physics.md §9.1): every grid line is a cell boundary, each interval between two
+  // lines one root cell, and outside the grid one cell out to the box that holds the disk
+  // |c - centre| <= R_near. None is graded: a root cell holds the integrals less those of its
+  // near cells (make_near_nodes), which is analytic on it, the next grid cell's edges a grid
+  // cell away (the integrals themselves go like d^3 ln d across the lines, where sigma0 kinks,
+  // and d^2 ln d across the edges, where it jumps: graded towards both, a cell took degree 18
+  // each way where it now takes 12, and the outside cells take 12 along the edge and 36 away
+  // from it). The far patch turns about the map's centre.
   void make_map_roots() {
     const PressureMap& m = *map_;
     const double mx = 0.5 * (m.x.front() + m.x.back()), my = 0.5 * (m.y.front() + m.y.back());
     near_ = kNear * std::hypot(0.5 * (m.x.back() - m.x.front()), 0.5 * (m.y.back() - m.y.front()));
     auto cells = [this](const std::vector<double>& grid, double centre) {
       std::vector<Axis> out;
-      auto outside = [&out](double edge, double to) {  // one cell graded towards the edge
-        out.push_back(to > edge ? Axis{edge, to, 3, false} : Axis{to, edge, 3, true});
+      auto outside = [&out](double edge, double to) {  // one cell from the edge out
+        out.push_back(to > edge ? Axis{edge, to, 1, false} : Axis{to, edge, 1, true});
       };
       outside(grid.front(), centre - near_);
       for (std::size_t i = 0; i + 1 < grid.size(); ++i)
-        out.push_back(Axis{grid[i], grid[i + 1], 0, true});
+        out.push_back(Axis{grid[i], grid[i + 1], 1, true});
       outside(grid.back(), centre + near_);
       std::sort(out.begin(), out.end(), [](const Axis& p, const Axis& r) { return p.lo < r.lo; });
       return out;
@@ -1211,6 +1260,7 @@ class SpotIntegralTable {
 
     void run() {
       t.make_roots();
+      if (t.kind_ == SpotKind::Map) t.make_near_nodes(map_strips);
       std::vector<Cell> pending;
       for (std::size_t r = 0; r < t.roots_.size(); ++r) {
         Cell c;
@@ -1288,16 +1338,32 @@ class SpotIntegralTable {
       if (stopped) throw SpotTableBuildStopped();
       t.stats_.points += jobs.size();
       for (std::size_t i = 0; i < jobs.size(); ++i) known.emplace(jobs[i], values[i]);
-      for (Cell& c : cells) {
+      // A point is shared by the cells around it; on a map each cell holds it less its own
+      // near cells (in parallel: ~1 us a point).
+      parallel(cells.size(), [&](std::size_t index) {
+        Cell& c = cells[index];
         for (int i1 = 0; i1 <= c.n1; ++i1)
           for (int i0 = 0; i0 <= c.n0; ++i0) {
             const std::size_t k = static_cast<std::size_t>(i1 * (c.n0 + 1) + i0);
-            if (!c.known[k]) c.values[k] = known.at(key_of(c, node(i0, c.n0), node(i1, c.n1)));
+            if (!c.known[k]) c.values[k] = held(c, key_of(c, node(i0, c.n0), node(i1, c.n1)));
             c.known[k] = 1;
           }
-        if (!c.check_known) c.check = known.at(key_of(c, kCheckX, kCheckY));
+        if (!c.check_known) c.check = held(c, key_of(c, kCheckX, kCheckY));
         c.check_known = true;
-      }
+      });
+    }
+
+    // The value cell c holds at point k: the integrals, less on a map those of its near cells.
+    Values held(const Cell& c, const Key& k) const {
+      Values v = known.at(k);
+      if (t.near_nodes_.empty() || t.near_nodes_[static_cast<std::size_t>(c.root)].empty())
+        return v;
+      double cx = 0.0, cy = 0.0;
+      t.centre(t.patches_[static_cast<std::size_t>(k.patch)], k.u0, k.u1, cx, cy);
+      double near[kChannels] = {};
+      t.add_near(c.root, cx, cy, near);
+      for (std::size_t j = 0; j < kChannels; ++j) v[j] -= near[j];
+      return v;
     }
 
     // The largest coefficient of every degree along one direction, relative to A0.
@@ -1342,12 +1408,6 @@ class SpotIntegralTable {
       return next;
     }
     static bool can_grow(int n) { return 2 * n <= kMaxSampleDegree; }
-    // A map's cell goes from its start degree to twice that first: the extrapolation from 9
-    // points overshoots what nearly all of them need (18).
-    int grow(const std::vector<double>& m, int n) const {
-      if (t.kind_ == SpotKind::Map && n == kMapStartDegree) return 2 * n;
-      return next_degree(m, n);
-    }
 
     void decide(Cell& c, std::vector<Cell>& next) {
       const Series s = transform(c.values, c.n0, c.n1);
@@ -1371,8 +1431,8 @@ class SpotIntegralTable {
       // (A degree grows to a multiple of itself, so that the points nest, or the cell splits.)
       if ((bad0 && can_grow(n0)) || (bad1 && can_grow(n1))) {
         Cell d = c;
-        d.n0 = bad0 && can_grow(n0) ? grow(m0, n0) : n0;
-        d.n1 = bad1 && can_grow(n1) ? grow(m1, n1) : n1;
+        d.n0 = bad0 && can_grow(n0) ? next_degree(m0, n0) : n0;
+        d.n1 = bad1 && can_grow(n1) ? next_degree(m1, n1) : n1;
         resize(d);
         const int f0 = d.n0 / n0, f1 = d.n1 / n1;
         for (int j = 0; j <= n1; ++j)
@@ -1533,6 +1593,9 @@ class SpotIntegralTable {
   double focal_ = 0.0, mu_far_ = 0.0;  // its foci (+-focal_, 0) and outer bound
   std::vector<Patch> patches_;         // ellipse: polar, far; rectangle: box, far, corners
   std::vector<Root> roots_;
+  // A map's table: for each root cell, the corner nodes of the grid cells that touch it, whose
+  // integrals it holds apart (none for the far patch's cells, make_near_nodes).
+  std::vector<std::vector<MapCornerNode>> near_nodes_;
   std::vector<TreeNode> tree_;
   std::vector<Leaf> leaves_;
   std::vector<double> coeff_;
