@@ -9,9 +9,10 @@
 //   I(c) = L(1) U(c) + sum_k J_k s_k^(2+d) U(c/s_k) + ∫_0^1 (-L'(s)) s^(2+d) U(c/s) ds.   (9.8)
 // U comes from its table, read along the ray c/s (SpotIntegralTable::Ray: a reading adds its
 // weight times the radial Chebyshev polynomials to those of its piece, whose coefficients are
-// summed against them once a point), so a point costs one 1-D integral in s instead of a 2-D one: the rays of SpotIntegrator cut every ray and the angular range at each of a table
-// law's samples (39 ms a point for 41 samples), and left a law of more than 64 samples to their
-// rules across its kinks (6e-6 of f N for 100 samples). Here the samples cut only the s-range.
+// summed against them once a point), so a point costs one 1-D integral in s instead of a 2-D one:
+// the rays of SpotIntegrator cut every ray and the angular range at each of a table law's samples
+// (39 ms a point for 41 samples), and left a law of more than 64 samples to their rules across its
+// kinks (6e-6 of f N for 100 samples). Here the samples cut only the s-range.
 //
 // The s-integrand is smooth but at
 //  - s = rho_e(c), where c/s crosses the rim: U goes like d^2 ln|d| there (a cut), and its

@@ -37,11 +37,11 @@
 //    interval between two lines one root cell and one cell from each edge out; the far patch
 //    about the map's centre over the full turn, with the map's own moments (Ax, Ay, Axy need
 //    not vanish). Its points come from MapStripIntegrator (map_strip_integrator.hpp). The
-//    integrals kink across every grid line (d^3 ln d) and jump across the edges (d^2 ln d), but
-//    on a root cell only the grid cells that touch it are not smooth: each root cell holds the
+//    integrals go like d^3 ln d across every grid line and d^2 ln d across the edges, but on a
+//    root cell only the grid cells that touch it are not smooth: each root cell holds the
 //    integrals less theirs (its near cells, up to 3 x 3), which a reading adds back by their
-//    corner sums (map_corner_sums.hpp, ~1 us), so that what it holds is analytic on it and its
-//    cells need no grading.
+//    corner sums (map_corner_sums.hpp, 0.2-0.5 us), so that what it holds is analytic on it and
+//    its cells need no grading.
 // Each patch is a grid of root cells. On both sides of every singular line (and about every
 // corner) a cell of width 0.35 is graded as u = u_s +- w ((1 -+ s)/2)^3 in its coordinate
 // s in [-1, 1] (powers 4 and 6 for the ring law's d ln d): d^2 ln d becomes s^6 ln s, which a
@@ -587,8 +587,6 @@ class SpotIntegralTable {
 
   // One coordinate of a root cell: s in [-1, 1] to the patch coordinate u in [lo, hi], linear or
   // graded towards a singular line at hi, u = hi - (hi - lo) ((1 - s)/2)^power (at lo: mirrored).
-  // Power 0: graded towards both ends, u = lo + (hi - lo) sin^2(pi (1 + s)/4), quadratic contact
-  // at each (a map's cell between two grid lines: a kink's d^3 ln d becomes (1 -+ s)^6 ln).
   struct Axis {
     double lo = 0.0, hi = 1.0;
     int power = 1;  // 1: linear
@@ -598,25 +596,12 @@ class SpotIntegralTable {
       if (s == -1.0) return lo;
       if (s == 1.0) return hi;
       if (power == 1) return lo + (hi - lo) * 0.5 * (s + 1.0);
-      if (power == 0) {  // sin^2 of a quarter turn, from the nearer end
-        const double h = std::sin(0.25 * M_PI * (1.0 - std::fabs(s)));
-        return s < 0.0 ? lo + (hi - lo) * h * h : hi - (hi - lo) * h * h;
-      }
       if (towards_hi) return hi - (hi - lo) * std::pow(0.5 * (1.0 - s), power);
       return lo + (hi - lo) * std::pow(0.5 * (1.0 + s), power);
     }
     template <typename E>
     E s_of(const E& u) const {
-      using std::asin;
-      using std::sqrt;
       if (power == 1) return std::clamp(E(2.0 * (u - lo) / (hi - lo) - 1.0), E(-1.0), E(1.0));
-      if (power == 0) {
-        const E from_hi = std::clamp(E((hi - u) / (hi - lo)), E(0.0), E(1.0));
-        const bool upper = from_hi <= 0.5;
-        const E w = upper ? from_hi : std::clamp(E((u - lo) / (hi - lo)), E(0.0), E(1.0));
-        const E x = 1.0 - (4.0 / M_PI) * asin(sqrt(w));
-        return upper ? x : E(-x);
-      }
       if (towards_hi) return 1.0 - 2.0 * root(std::clamp(E((hi - u) / (hi - lo)), E(0.0), E(1.0)));
       return 2.0 * root(std::clamp(E((u - lo) / (hi - lo)), E(0.0), E(1.0))) - 1.0;
     }
@@ -817,7 +802,7 @@ class SpotIntegralTable {
   // a root cell's closure meets reach it: the others' edges keep at least a grid cell away. So
   // each root cell of the box holds the integrals less those cells' (its near cells: up to
   // 3 x 3 about a grid cell, the edge's cells next to one outside), whose corner sums are
-  // exact wherever c lies and cost ~1 us a reading, and what it holds is analytic on it.
+  // exact wherever c lies and cost 0.2-0.5 us a reading, and what it holds is analytic on it.
   void make_near_nodes(const MapStripIntegrator& strips) {
     const PressureMap& m = *map_;
     near_nodes_.assign(roots_.size(), {});
