@@ -17,10 +17,13 @@
 // table law: from the model's points, layers or strips) is printed as a check.
 //
 //   spot_speed [--repeat N] [--root DIR] [--passes-only] [--maps] [--table-law-aspects]
+//              [--map-sizes]
 //   # DIR: the repository, for data/footprint_map.csv; --passes-only: the one-pass table only;
 //   # --maps: only the two maps' rows of the first table;
 //   # --table-law-aspects: only the builds of table laws of 41 and 201 samples on ellipses of
-//   # aspect 0.1 to 4 (one build each, one thread)
+//   # aspect 0.1 to 4 (one build each, one thread);
+//   # --map-sizes: only the builds of random maps of 8 x 8 to 30 x 30 samples (one each, one
+//   # thread)
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -127,18 +130,19 @@ std::shared_ptr<PressureMap> read_map(const std::string& path) {
   return m;
 }
 
-// A random 15 x 15 grid over [-1.2, 1.2] x [-1, 1] (lines jittered), samples in [0, 1] with one in
+// A random n x n grid over [-1.2, 1.2] x [-1, 1] (lines jittered), samples in [0, 1] with one in
 // five zero, nonzero on the rim (sigma0 jumps at the edges).
-std::shared_ptr<PressureMap> random_map() {
+std::shared_ptr<PressureMap> random_map(int n = 15) {
   std::mt19937_64 g(15);
   auto u01 = [&g] { return static_cast<double>(g() >> 11) * 0x1p-53; };
   auto m = std::make_shared<PressureMap>();
-  for (int i = 0; i < 15; ++i) {
-    m->x.push_back(-1.2 + 2.4 * (i + (i > 0 && i < 14 ? 0.3 * (u01() - 0.5) : 0.0)) / 14);
-    m->y.push_back(-1.0 + 2.0 * (i + (i > 0 && i < 14 ? 0.3 * (u01() - 0.5) : 0.0)) / 14);
+  const int last = n - 1;
+  for (int i = 0; i < n; ++i) {
+    m->x.push_back(-1.2 + 2.4 * (i + (i > 0 && i < last ? 0.3 * (u01() - 0.5) : 0.0)) / last);
+    m->y.push_back(-1.0 + 2.0 * (i + (i > 0 && i < last ? 0.3 * (u01() - 0.5) : 0.0)) / last);
   }
-  for (int k = 0; k < 225; ++k) m->sigma0.push_back(u01() < 0.2 ? 0.0 : u01());
-  m->source = "random 15 x 15";
+  for (int k = 0; k < n * n; ++k) m->sigma0.push_back(u01() < 0.2 ? 0.0 : u01());
+  m->source = "random " + std::to_string(n) + " x " + std::to_string(n);
   return m;
 }
 
@@ -263,6 +267,21 @@ void table_law_aspects() {
   }
 }
 
+// One build on one thread of random maps of 8 x 8 to 30 x 30 samples: CPU time and points.
+void map_sizes() {
+  std::printf("| random map | build, 1 thread (CPU) | points | per point |\n");
+  std::printf("|---|---:|---:|---:|\n");
+  for (int n : {8, 15, 20, 30}) {
+    const double c0 = process_cpu();
+    const SpotIntegralTable table(ContactSpot::pressure_map(random_map(n)),
+                                  PressureLaw<double>::uniform(), 1.0, {}, 1);
+    const double t = process_cpu() - c0;
+    std::printf("| %d x %d | %.2f s | %zu | %.1f us |\n", n, n, t, table.stats().points,
+                1e6 * t / static_cast<double>(table.stats().points));
+    std::fflush(stdout);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -280,12 +299,15 @@ int main(int argc, char** argv) {
     } else if (a == "--table-law-aspects") {
       table_law_aspects();
       return 0;
+    } else if (a == "--map-sizes") {
+      map_sizes();
+      return 0;
     } else if (a == "--root" && i + 1 < argc) {
       root = argv[++i];
     } else {
       std::fprintf(stderr,
                    "usage: spot_speed [--repeat N] [--root DIR] [--passes-only] [--maps] "
-                   "[--table-law-aspects]\n");
+                   "[--table-law-aspects] [--map-sizes]\n");
       return 2;
     }
   }
