@@ -26,8 +26,8 @@ struct MapCornerNode {
 };
 
 // The moments X_ij = ∫ sigma0 a^i e^j e/r and Y_ij = ∫ sigma0 a^i e^j a/r over the cells whose
-// nodes are added, about one centre c. E is double, or a dual number whose parts carry the
-// derivatives along c (a pressure map's table adds the cells next to c this way,
+// nodes are added, about one centre c. E is double, or PlaneDual (plane_dual.hpp), whose parts
+// carry the derivatives along c (a pressure map's table adds the cells next to c this way,
 // spot_integral_table.hpp).
 template <typename E>
 class BasicMapCornerMoments {

@@ -100,6 +100,7 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -108,6 +109,7 @@
 #include <frictionid/model/ellipse_law_integrator.hpp>
 #include <frictionid/model/gauss_legendre_rule.hpp>
 #include <frictionid/model/map_strip_integrator.hpp>
+#include <frictionid/model/plane_dual.hpp>
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/model/rect_strip_integrator.hpp>
 #include <frictionid/model/scalar_ops.hpp>
@@ -787,14 +789,27 @@ class SpotIntegralTable {
     for (int j = 0; j < kChannels; ++j) v[j] = acc[j];
   }
 
-  // A map's near cells (near_nodes_) of root cell r at c, added to acc by their corner sums.
+  // A map's near cells (near_nodes_) of root cell r at c, added to acc by their corner sums. A
+  // dual number's parts along c come from one PlaneDual instantiation of the sums, by the chain
+  // rule (plane_dual.hpp).
   template <typename E>
   void add_near(int r, const E& cx, const E& cy, E* acc) const {
     const std::vector<MapCornerNode>& nodes = near_nodes_[static_cast<std::size_t>(r)];
     if (nodes.empty()) return;
-    BasicMapCornerMoments<E> moments(cx, cy);
-    for (const MapCornerNode& n : nodes) moments.add(n);
-    moments.add_channels(acc);
+    if constexpr (std::is_same_v<E, double>) {
+      MapCornerMoments moments(cx, cy);
+      for (const MapCornerNode& n : nodes) moments.add(n);
+      moments.add_channels(acc);
+    } else {
+      const double x = value_of(cx), y = value_of(cy);
+      BasicMapCornerMoments<PlaneDual> moments(PlaneDual(x, 1.0, 0.0), PlaneDual(y, 0.0, 1.0));
+      for (const MapCornerNode& n : nodes) moments.add(n);
+      PlaneDual sums[kChannels];
+      moments.add_channels(sums);
+      const E along_x = cx - x, along_y = cy - y;  // c's parts, its value taken out
+      for (int j = 0; j < kChannels; ++j)
+        acc[j] += sums[j].v + sums[j].dx * along_x + sums[j].dy * along_y;
+    }
   }
 
   // A map's integrals are not smooth across the edges of its grid cells (sigma0 kinks there,
