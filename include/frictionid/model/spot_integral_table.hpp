@@ -297,10 +297,10 @@ class SpotIntegralTable {
   // Readings along the ray c/s, s > 0, from one centre c: a table law's layers read the uniform
   // ellipse at c/s for 250-650 values of s (ellipse_law_integrator.hpp). On an ellipse's table
   // the angular coordinate of both patches (the reference angle of the polar patch, the
-  // physical angle of the far one) is the same for every s, so each piece's rows are summed with
-  // their angular Chebyshev weights once per ray and a reading costs one series in the radial
-  // coordinate: (n0 + 1) x 12 products where channels_at takes (n0 + 1)(n1 + 1) x 12. The same
-  // values as channels_at(c_x/s, c_y/s) but for rounding. Other tables read channels_at.
+  // physical angle of the far one) is the same for every s, so a layer's reading only adds its
+  // weights to its piece's radial Chebyshev sums (add), and each piece is summed against them
+  // once (add_to). A single reading, operator(), gives the same values as
+  // channels_at(c_x/s, c_y/s) but for rounding. Other tables read channels_at.
   class Ray {
    public:
     std::array<double, kChannels> operator()(double s) const {
@@ -310,11 +310,11 @@ class SpotIntegralTable {
       if (!find(s, s0, s1, index)) return t_->channels_at(cx_ / s, cy_ / s);
       if (index < 0) return v;  // not on an ellipse's patches
       const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(index)];
-      const double* g_row = slice(index, s1);
       double tx[kStoreDegree + 1];
       chebyshev(leaf_coordinate(leaf.a0, leaf.b0, s0), leaf.n0, tx);
-      for (int k = 0; k <= leaf.n0; ++k, g_row += kChannels)
-        for (int j = 0; j < kChannels; ++j) v[j] += tx[k] * g_row[j];
+      sum_piece(index, s1, tx, tx, tx, v.data());
+      for (int j = 0; j < kChannels; ++j)
+        if ((fx_ && kOddX[j]) != (fy_ && kOddY[j])) v[j] = -v[j];
       return v;
     }
 
@@ -352,24 +352,8 @@ class SpotIntegralTable {
     void add_to(double* acc) const {
       double out[kChannels] = {};
       for (const Visit& v : visits_) {
-        const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(v.leaf)];
-        const double y =
-            std::clamp((2.0 * v.s1 - leaf.a1 - leaf.b1) / (leaf.b1 - leaf.a1), -1.0, 1.0);
-        double ty[kStoreDegree + 1];
-        chebyshev(y, leaf.n1, ty);
         const double* W = weights_.data() + v.offset;
-        const double* c = t_->coeff_.data() + leaf.offset;
-        double sum[kChannels] = {};
-        for (int l = 0; l <= leaf.n1; ++l) {
-          const int len = leaf.row_len[static_cast<std::size_t>(l)];
-          for (int k = 0; k < len; ++k, c += kChannels) {
-            const double a[3] = {ty[l] * W[k], ty[l] * W[kWeightRow + k],
-                                 ty[l] * W[2 * kWeightRow + k]};
-            for (int j = 0; j < kChannels; ++j)
-              sum[j] += a[SpotIntegrals::kChannelDegree[j]] * c[j];
-          }
-        }
-        for (int j = 0; j < kChannels; ++j) out[j] += sum[j];
+        sum_piece(v.leaf, v.s1, W, W + kWeightRow, W + 2 * kWeightRow, out);
       }
       for (int j = 0; j < kChannels; ++j)
         acc[j] += ((fx_ && kOddX[j]) != (fy_ && kOddY[j]) ? -out[j] : out[j]) + direct_[j];
@@ -434,7 +418,7 @@ class SpotIntegralTable {
       return true;
     }
 
-    // The radial coordinate in [-1, 1] of the piece [a0, b0] (root cell coordinates).
+    // The coordinate in [-1, 1] of s0 on the piece's side [a0, b0] (root cell coordinates).
     static double leaf_coordinate(double a0, double b0, double s0) {
       return std::clamp((2.0 * s0 - a0 - b0) / (b0 - a0), -1.0, 1.0);
     }
@@ -456,38 +440,21 @@ class SpotIntegralTable {
       return weights_.data() + at;
     }
 
-    // Piece `index`'s coefficients summed over its rows with the weights T_l(y) of this ray's
-    // angle, and the signs of its quadrant: (n0 + 1) x 12 values, computed at the first reading
-    // in that piece.
-    const double* slice(int index, double s1) const {
-      const auto& leaf = t_->leaves_[static_cast<std::size_t>(index)];
-      for (std::size_t i = 0; i < slices_.size(); ++i) {
-        const std::size_t k = (last_ + i) % slices_.size();
-        if (slices_[k].first == index) {
-          last_ = k;
-          return sums_.data() + slices_[k].second;
-        }
-      }
-      const double y = std::clamp((2.0 * s1 - leaf.a1 - leaf.b1) / (leaf.b1 - leaf.a1), -1.0, 1.0);
+    // Adds to out piece `index`'s coefficients summed against T_l(y) at angular coordinate s1 and
+    // radial weights for channels of degree 0, 1 and 2 (w0, w1, w2; T_k(x) for one reading).
+    void sum_piece(int index, double s1, const double* w0, const double* w1, const double* w2,
+                   double* out) const {
+      const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(index)];
       double ty[kStoreDegree + 1];
-      chebyshev(y, leaf.n1, ty);
-      double sign[kChannels];
-      for (int j = 0; j < kChannels; ++j)
-        sign[j] = (fx_ && kOddX[j]) != (fy_ && kOddY[j]) ? -1.0 : 1.0;
-      const std::size_t at = sums_.size();
-      sums_.resize(at + static_cast<std::size_t>(leaf.n0 + 1) * kChannels, 0.0);
-      double* g = sums_.data() + at;
+      chebyshev(leaf_coordinate(leaf.a1, leaf.b1, s1), leaf.n1, ty);
       const double* c = t_->coeff_.data() + leaf.offset;
       for (int l = 0; l <= leaf.n1; ++l) {
         const int len = leaf.row_len[static_cast<std::size_t>(l)];
-        for (int k = 0; k < len; ++k, c += kChannels)
-          for (int j = 0; j < kChannels; ++j) g[k * kChannels + j] += ty[l] * c[j];
+        for (int k = 0; k < len; ++k, c += kChannels) {
+          const double a[3] = {ty[l] * w0[k], ty[l] * w1[k], ty[l] * w2[k]};
+          for (int j = 0; j < kChannels; ++j) out[j] += a[SpotIntegrals::kChannelDegree[j]] * c[j];
+        }
       }
-      for (int k = 0; k <= leaf.n0; ++k)
-        for (int j = 0; j < kChannels; ++j) g[k * kChannels + j] *= sign[j];
-      last_ = slices_.size();
-      slices_.push_back({index, at});
-      return g;
     }
 
     const SpotIntegralTable* t_;
@@ -495,9 +462,6 @@ class SpotIntegralTable {
     bool fx_ = false, fy_ = false, centre_ = false;
     double P_ = 0.0, r_ = 0.0;  // the reference radius and |c| at s = 1
     double u1_[2] = {};         // the angular coordinate in the polar and the far patch
-    mutable std::vector<std::pair<int, std::size_t>> slices_;  // piece, offset into sums_
-    mutable std::vector<double> sums_;
-    mutable std::size_t last_ = 0;
     static constexpr std::size_t kUnset = static_cast<std::size_t>(-1);
     mutable std::size_t i1_[2] = {kUnset, kUnset};  // the angle's cell in each patch
     mutable int last_root_ = -1;                    // and its coordinate in that root cell
