@@ -23,6 +23,7 @@
 #include <vector>
 
 #include <frictionid/model/contact_spot.hpp>
+#include <frictionid/model/ellipse_law_integrator.hpp>
 #include <frictionid/model/gauss_legendre_rule.hpp>
 #include <frictionid/model/map_strip_integrator.hpp>
 #include <frictionid/model/pressure_law.hpp>
@@ -314,6 +315,33 @@ TEST(SpotIntegralTable, ATableLawOnAnElongatedEllipseMatchesTheIntegrator) {
     const Worst w = compare(t, Reference(spot, table.law, q), centres, area(spot, table.law, q));
     EXPECT_LT(w.error, kTolerance)
         << "q " << q << ": channel " << w.channel << " at (" << w.cx << ", " << w.cy << ")";
+  }
+}
+
+// A table of 9 to 63 samples on an ellipse has every kink a boundary of the table's cells, the
+// strongest graded, the others plain (make_roots). It holds its points, the layers of the
+// uniform ellipse (which ellipse_law_integrator_test.cpp holds to the rays), over the plane:
+// next to the rim and to a sample's ellipse (rho_e = 0.5) on both sides, at aspects either side
+// of 1.
+TEST(SpotIntegralTable, ATableLawOfFewSamplesOnAnEllipseHoldsItsLayers) {
+  const PressureLaw<double> law = testing::spot_cases::sampled_table(25, 0.5);
+  for (double q : {0.7, 2.0}) {
+    const ContactSpot spot = ContactSpot::ellipse(q);
+    const SpotIntegralTable& t = table_for(spot, {"sampled 25", law});
+    const EllipseLawIntegrator<SpotIntegralTable> layers(
+        SpotIntegralTable::uniform_for_layers(q, {}, spot_threads(0)), law, q);
+    const double A0 = area(spot, law, q);
+    double worst = 0.0, wx = 0.0, wy = 0.0;
+    for (const auto& c : sample_centres(SpotKind::Ellipse, q, 300, 53)) {
+      const auto got = channels(t(c[0], c[1])), want = channels(layers(c[0], c[1]));
+      for (std::size_t k = 0; k < 12; ++k)
+        if (std::fabs(got[k] - want[k]) / A0 > worst) {
+          worst = std::fabs(got[k] - want[k]) / A0;
+          wx = c[0];
+          wy = c[1];
+        }
+    }
+    EXPECT_LT(worst, kTolerance) << "q " << q << " at (" << wx << ", " << wy << ")";
   }
 }
 

@@ -69,7 +69,8 @@
 // Hertz, parabolic, power:n: 6-20 us a point); under a table law, layers of the uniform ellipse
 // (ellipse_law_integrator.hpp) from that ellipse's own table, built first (30-75 us a point for
 // 41 samples; from 64 a product rule whose readings do not grow with them; the table then takes
-// 9,000-66,000 points, every sample a line its cells resolve). An annulus has no
+// 9,000-49,000 points, every sample a line its cells resolve, below 64 samples a boundary of
+// them). An annulus has no
 // points of its own: it is the uniform ellipse less the one scaled by its inner radius, two
 // readings of the uniform table (built to a tolerance tightened by (1 - B^2)/(1 + B^2), the
 // annulus' load over what the two carry). Rectangle: RectStripIntegrator
@@ -540,6 +541,7 @@ class SpotIntegralTable {
   static constexpr double kConfocal = 0.3;  // outside an ellipse of aspect below: confocal patch
   static constexpr double kPolarLayers = 0.05;  // but for layers, down to this aspect
   static constexpr std::size_t kMaxGradedBreaks = 8;
+  static constexpr std::size_t kPlainKinks = 64;  // fewer: every kink a cell boundary (make_roots)
 
   // Which channels change sign with c_x and with c_y.
   static constexpr bool kOddX[kChannels] = {false, true, false, true,  false, true,
@@ -838,9 +840,11 @@ class SpotIntegralTable {
 
   // The cells of one coordinate over [lo, hi]: graded cells of the given widths on both sides of
   // every singular point (ascending, inside (lo, hi]), linear cells between them no wider than
-  // kRatio times their distance from the nearest one.
+  // kRatio times their distance from the nearest one. Plain points (ascending) are cell
+  // boundaries too, ungraded: the graded cells stop at them and the linear cells are cut there.
   static std::vector<Axis> axis_cells(double lo, double hi, const std::vector<double>& singular,
-                                      const std::vector<double>& widths, int power) {
+                                      const std::vector<double>& widths, int power,
+                                      const std::vector<double>& plain = {}) {
     std::vector<Axis> out;
     std::vector<std::pair<double, double>> gaps;
     double from = lo;
@@ -848,8 +852,12 @@ class SpotIntegralTable {
       const double s = singular[i];
       const double prev = i == 0 ? lo : singular[i - 1];
       const double next = i + 1 == singular.size() ? hi : singular[i + 1];
-      const double left = std::min(widths[i], (i == 0 ? 1.0 : 0.5) * (s - prev));
-      const double right = std::min(widths[i], (i + 1 == singular.size() ? 1.0 : 0.5) * (next - s));
+      double left = std::min(widths[i], (i == 0 ? 1.0 : 0.5) * (s - prev));
+      double right = std::min(widths[i], (i + 1 == singular.size() ? 1.0 : 0.5) * (next - s));
+      const auto above = std::upper_bound(plain.begin(), plain.end(), s);
+      if (above != plain.end()) right = std::min(right, *above - s);
+      const auto below = std::lower_bound(plain.begin(), plain.end(), s);
+      if (below != plain.begin()) left = std::min(left, s - *(below - 1));
       if (left > 0.0) {
         gaps.push_back({from, s - left});
         out.push_back(Axis{s - left, s, power, true});
@@ -858,6 +866,18 @@ class SpotIntegralTable {
       from = s + right;
     }
     gaps.push_back({from, hi});
+    if (!plain.empty()) {
+      std::vector<std::pair<double, double>> cut;
+      for (auto [a, e] : gaps) {
+        for (double u : plain)
+          if (u > a && u < e) {
+            cut.push_back({a, u});
+            a = u;
+          }
+        cut.push_back({a, e});
+      }
+      gaps = std::move(cut);
+    }
     auto distance = [&](double u) {
       double d = HUGE_VAL;
       for (double s : singular) d = std::min(d, std::fabs(u - s));
@@ -978,7 +998,7 @@ class SpotIntegralTable {
     // A table's every sample is a kink (its interpolant is only C^1 there): beyond a few, its
     // steps are graded, on an ellipse its strongest kinks too (at an extremum, where the
     // interpolant flattens: 3e-10 A0 -> 4e-12 for 201 samples; on a rectangle every graded line
-    // adds two corners, 4x the points), and the other kinks left to the cells' degrees.
+    // adds two corners, 4x the points), and the other kinks left to the cells (below).
     std::vector<double> lines;
     const std::vector<double> breaks = law_.breakpoints();
     std::vector<double> graded = breaks.size() <= kMaxGradedBreaks ? breaks : law_.steps();
@@ -989,6 +1009,18 @@ class SpotIntegralTable {
       if (b > 0.0 && b < 1.0) lines.push_back(b);
     lines.push_back(1.0);
     std::sort(lines.begin(), lines.end());
+    // On an ellipse a table of fewer than kPlainKinks samples has its other kinks as plain cell
+    // boundaries: left inside the cells (d^3 ln d within, not at an end) they took degrees up
+    // to 64 and halvings across every band between samples (41 samples at aspect 4: 66,000
+    // points, now 43,000). Many close samples kink less each; there the cells' degrees take
+    // them (201 samples: 9,000 points, with every kink a boundary 40,000).
+    std::vector<double> plain;
+    if (kind_ == SpotKind::Ellipse && breaks.size() > kMaxGradedBreaks &&
+        breaks.size() < kPlainKinks)
+      for (double b : breaks)
+        if (b > 0.0 && b < 1.0 && !std::binary_search(lines.begin(), lines.end(), b))
+          plain.push_back(b);
+    plain.erase(std::unique(plain.begin(), plain.end()), plain.end());
     const bool ring = law_.kind == PressureKind::Ring;
     const int power = ring ? 4 : 3, corner_power = ring ? 6 : 3;
     const double max_r = kind_ == SpotKind::Ellipse ? std::max(1.0, q_) : std::hypot(1.0, q_);
@@ -1000,9 +1032,10 @@ class SpotIntegralTable {
       // the spot itself, and the confocal patch the rest (below).
       confocal_ = q_ < kConfocal && !polar_;
       near_ = confocal_ ? 1.0 : far / std::min(1.0, q_);
-      add_patch(Patch(Coords::Polar),
-                axis_cells(0.0, near_, lines, std::vector<double>(lines.size(), kGraded), power),
-                reference_quarter());
+      add_patch(
+          Patch(Coords::Polar),
+          axis_cells(0.0, near_, lines, std::vector<double>(lines.size(), kGraded), power, plain),
+          reference_quarter());
       add_patch(Patch(Coords::Far), inverse, quarter);
       if (confocal_) {
         // Outside an ellipse of aspect q < 1, confocal coordinates about its foci (+-f, 0),
