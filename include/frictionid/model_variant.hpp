@@ -94,8 +94,8 @@ inline std::shared_ptr<const model::RingIntegralTable> ring_table_for_rows(
 // uniform ellipse at c and at c/B); they crowd where the integrals are hardest, next to the rim,
 // the edges and a map's grid lines, and cost 0.7-1.7 times a row of a test design. A reading
 // costs ~0.3 us (a map's 0.6-1.1 us). The points a table needs range from ~2,400 (ellipse:0.6,
-// Hertz) to ~66,000 (a table law of 41 samples on ellipse:0.1 or ellipse:4) and 97,000 (a rough
-// random 20 x 20 map), and a map's build time grows with the square of its cells. So a build is
+// Hertz) to ~49,000 (a table law of 41 samples on ellipse:0.1) and 97,000 (a rough random
+// 20 x 20 map), and a map's build time grows with the square of its cells. So a build is
 // attempted with a budget of as many points as the rows would cost (spot_table_budget) and
 // abandoned before it would exceed it (model::SpotTableOverBudget): the rows are then integrated,
 // and the attempt has cost about what they do. Either way one pass costs at most ~2-3 times the
@@ -134,11 +134,13 @@ inline model::ContactSpot spot_with_table(
 // The spot with its table, or as given, integrated point by point, where the table would need
 // more than `max_points` points: by default model::SpotIntegralTable::kMaxPoints (a map of
 // thousands of cells), for work whose points are not known in advance (simulate, shimmy).
+// `stop` as spot_with_table's (asked before every point: a progress count may ride on it).
 inline model::ContactSpot spot_with_table_if_bounded(
     ModelKind kind, const model::PressureLaw<double>& law, double q, double n,
-    const model::ContactSpot& spot, std::size_t max_points = model::SpotIntegralTable::kMaxPoints) {
+    const model::ContactSpot& spot, std::size_t max_points = model::SpotIntegralTable::kMaxPoints,
+    const std::function<bool()>& stop = {}) {
   try {
-    return spot_with_table(kind, law, q, n, spot, {}, 0, max_points);
+    return spot_with_table(kind, law, q, n, spot, stop, 0, max_points);
   } catch (const model::SpotTableOverBudget&) {
     return spot;
   }

@@ -1,9 +1,11 @@
 #include "app/shimmy.hpp"
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <iterator>
+#include <mutex>
 #include <utility>
 
 #include <ceres/jet.h>
@@ -98,11 +100,25 @@ struct ShimmyTables {
   model::ContactSpot spot;
 };
 
-ShimmyTables shimmy_tables(const ModelSetup& s) {
+ShimmyTables shimmy_tables(const ModelSetup& s, const TableProgress& progress) {
   if (s.kind != ModelKind::Exact) return {nullptr, s.contact};
-  if (s.contact.kind != model::SpotKind::Circle)
+  if (s.contact.kind != model::SpotKind::Circle) {
+    std::atomic<std::size_t> points{0};
+    std::mutex one_at_a_time;
+    std::function<bool()> count;
+    if (progress)
+      count = [&] {
+        const std::size_t n = ++points;
+        if (n % kTablePointsStep == 0) {
+          const std::lock_guard<std::mutex> lock(one_at_a_time);
+          progress(n);
+        }
+        return false;
+      };
     return {nullptr,
-            spot_with_table_if_bounded(s.kind, s.law, s.params[kQ], s.params[kN], s.contact)};
+            spot_with_table_if_bounded(s.kind, s.law, s.params[kQ], s.params[kN], s.contact,
+                                       model::SpotIntegralTable::kMaxPoints, count)};
+  }
   // ring_table_for leaves the ring law out (its values are kernels, as cheap as a table); its
   // derivatives need the table all the same.
   if (s.law.kind == model::PressureKind::Ring)
@@ -112,7 +128,7 @@ ShimmyTables shimmy_tables(const ModelSetup& s) {
 
 }  // namespace
 
-ShimmyCase::ShimmyCase(const ShimmyRequest& r) {
+ShimmyCase::ShimmyCase(const ShimmyRequest& r, const TableProgress& table_progress) {
   setup_ = make_model_setup(shimmy_model_request(r));
   check(r);
   wheel_.V = r.speed;
@@ -139,7 +155,7 @@ ShimmyCase::ShimmyCase(const ShimmyRequest& r) {
   start_.psi = r.psi0;
   table_directions_ = r.table_directions;
   const ModelSetup& s = setup_;
-  const ShimmyTables tables = shimmy_tables(s);
+  const ShimmyTables tables = shimmy_tables(s, table_progress);
   std::array<Friction::Dual, kParamCount> dual_params;
   for (int i = 0; i < kParamCount; ++i)
     dual_params[static_cast<std::size_t>(i)] =
@@ -236,8 +252,8 @@ nlohmann::ordered_json run_json(const model::ShimmyRun& run) {
       {"step_limit_reached", run.step_limit}};
 }
 
-ShimmyResult shimmy(const ShimmyRequest& r) {
-  const ShimmyCase c(r);
+ShimmyResult shimmy(const ShimmyRequest& r, const TableProgress& table_progress) {
+  const ShimmyCase c(r, table_progress);
   ShimmyResult out;
   const auto t0 = std::chrono::steady_clock::now();
   out.run = c.run(c.wheel(), c.start(), c.settings(),

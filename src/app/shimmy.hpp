@@ -2,6 +2,7 @@
 // `frictionid shimmy`, `frictionid.shimmy()`. One run here; speed sweeps in shimmy_sweep.hpp.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <string>
@@ -16,12 +17,18 @@
 
 namespace frictionid::app {
 
+// The points a contact spot's table has computed so far, every kTablePointsStep of them while
+// ShimmyCase builds it (a rough map's table takes seconds to minutes: its build grows as the
+// square of the cells). Called from the build's threads, one call at a time.
+using TableProgress = std::function<void(std::size_t points)>;
+inline constexpr std::size_t kTablePointsStep = 4096;
+
 // The checked request turned into what the integrator needs: the model (from --param or a
 // report.json), the wheel, the settings and the friction as a callable.
 class ShimmyCase {
  public:
   // Throws InputError (one line, naming the option) on bad input.
-  explicit ShimmyCase(const ShimmyRequest& r);
+  explicit ShimmyCase(const ShimmyRequest& r, const TableProgress& table_progress = {});
   ~ShimmyCase();
   ShimmyCase(const ShimmyCase&) = delete;
   ShimmyCase& operator=(const ShimmyCase&) = delete;
@@ -57,7 +64,7 @@ struct ShimmyResult {
 };
 
 // Checks the request and integrates one run.
-ShimmyResult shimmy(const ShimmyRequest& r);
+ShimmyResult shimmy(const ShimmyRequest& r, const TableProgress& table_progress = {});
 
 // The JSON of how a run ended: final state, outcome (with amplitude and frequency), energy.
 nlohmann::ordered_json run_json(const model::ShimmyRun& run);

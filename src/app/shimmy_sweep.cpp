@@ -59,7 +59,8 @@ SweepRange parse_sweep_range(const std::string& option, const std::string& text)
   return r;
 }
 
-SweepResult shimmy_sweep(const ShimmyRequest& r, const std::function<void(int, int)>& progress) {
+SweepResult shimmy_sweep(const ShimmyRequest& r, const std::function<void(int, int)>& progress,
+                         const TableProgress& table_progress) {
   SweepResult out;
   const SweepRange speeds = parse_sweep_range("--speed-sweep", r.speed_sweep);
   if (!(speeds.a > 0.0)) throw InputError("--speed-sweep: the speeds must be > 0");
@@ -79,7 +80,7 @@ SweepResult shimmy_sweep(const ShimmyRequest& r, const std::function<void(int, i
   ShimmyRequest base = r;
   base.output.clear();
   base.trajectory = false;
-  const ShimmyCase c(base);
+  const ShimmyCase c(base, table_progress);
   model::ShimmySettings set = c.settings();
   set.record = false;
   set.stop_at_limit_cycle = true;

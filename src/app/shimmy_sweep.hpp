@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/requests.hpp"
+#include "app/shimmy.hpp"
 
 namespace frictionid::app {
 
@@ -46,9 +47,10 @@ struct SweepResult {
   nlohmann::ordered_json summary;
 };
 
-// Throws InputError on bad input. progress(done, total) after each run.
-SweepResult shimmy_sweep(const ShimmyRequest& r,
-                         const std::function<void(int, int)>& progress = {});
+// Throws InputError on bad input. progress(done, total) after each run; table_progress while
+// the contact spot's table is built, before the first (ShimmyCase).
+SweepResult shimmy_sweep(const ShimmyRequest& r, const std::function<void(int, int)>& progress = {},
+                         const TableProgress& table_progress = {});
 
 // V,outcome,amplitude,frequency (and the parameter's column after V in a 2-D sweep).
 std::string sweep_csv(const SweepResult& s);

@@ -3,6 +3,7 @@
 // --speed-sweep the stability map DIR/shimmy.csv and DIR/shimmy.html.
 #include <unistd.h>
 
+#include <cstddef>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -18,14 +19,30 @@ namespace frictionid::cli {
 
 namespace {
 
+bool shows_progress(const app::ShimmyRequest& r) {
+  return r.progress || ::isatty(STDERR_FILENO) == 1;
+}
+
+// The contact spot's table while it is built (a rough map's takes seconds to minutes), on the
+// progress line; `shown` once it is there.
+app::TableProgress table_progress(bool tty, bool& shown) {
+  if (!tty) return {};
+  return [&shown](std::size_t points) {
+    std::fprintf(stderr, "\rcontact table: %zu points", points);
+    std::fflush(stderr);
+    shown = true;
+  };
+}
+
 int run_sweep(const app::ShimmyRequest& r) {
-  const bool tty = r.progress || ::isatty(STDERR_FILENO) == 1;
+  const bool tty = shows_progress(r);
   const auto progress = [tty](int done, int total) {
     if (!tty) return;
-    std::fprintf(stderr, "\rshimmy sweep: run %d of %d", done, total);
+    std::fprintf(stderr, "\r\033[Kshimmy sweep: run %d of %d", done, total);
     std::fflush(stderr);
   };
-  app::SweepResult s = app::shimmy_sweep(r, progress);
+  bool shown = false;
+  app::SweepResult s = app::shimmy_sweep(r, progress, table_progress(tty, shown));
   if (tty) std::fprintf(stderr, "\r\033[K");
   const std::filesystem::path dir(r.sweep_dir);
   write_file_atomically((dir / "shimmy.csv").string(), app::sweep_csv(s));
@@ -45,7 +62,9 @@ int run_shimmy(const app::ShimmyRequest& r) {
     return run_sweep(r);
   }
   if (!r.sweep_param.empty()) throw InputError("--sweep-param needs --speed-sweep");
-  app::ShimmyResult out = app::shimmy(r);
+  bool shown = false;
+  app::ShimmyResult out = app::shimmy(r, table_progress(shows_progress(r), shown));
+  if (shown) std::fprintf(stderr, "\r\033[K");
   if (!r.output.empty()) {
     write_file_atomically(r.output, app::shimmy_csv(out.rows));
     out.summary["trajectory_rows"] = out.rows.size();

@@ -108,6 +108,31 @@ TEST(CliShimmy, RigidStrutEndsAtRest) {
   EXPECT_EQ(j["final"]["phase"], "stick");
 }
 
+// A map's table takes seconds to minutes for a rough map (its build grows as the square of the
+// cells): --progress counts its points on stderr and clears the line before the summary;
+// without it (stderr is no terminal here) stderr stays empty. The summary is the same.
+TEST(CliShimmy, AContactTableShowsItsPointsOnTheProgressLine) {
+  const std::string map = std::string(FRICTIONID_SOURCE_DIR) + "/data/footprint_map.csv";
+  const std::string args =
+      "shimmy --model exact --param f=0.8 --N 1000 --R 0.05 --speed 20 --caster 0.1 "
+      "--yaw-inertia 0.5 --yaw-stiffness 2000 --yaw-damping 2 --lateral-mass 20 "
+      "--lateral-stiffness 2e5 --lateral-damping 100 --psi0 0.05 --duration 0.05 --contact map:" +
+      map;
+  const RunResult shown = run(args + " --progress");
+  ASSERT_EQ(shown.code, 0) << shown.err;
+  EXPECT_NE(shown.err.find("\rcontact table: 4096 points"), std::string::npos) << shown.err;
+  EXPECT_NE(shown.err.find("\rcontact table: 8192 points"), std::string::npos) << shown.err;
+  EXPECT_EQ(shown.err.size() - shown.err.rfind("\r\033[K"), 4u) << "the line is cleared last";
+  EXPECT_EQ(shown.err.find('\n'), std::string::npos);
+  const RunResult quiet = run(args);
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+  auto j = nlohmann::json::parse(shown.out), k = nlohmann::json::parse(quiet.out);
+  j.erase("wall_time_s");
+  k.erase("wall_time_s");
+  EXPECT_EQ(j, k);
+}
+
 TEST(CliShimmy, SpeedSweepWritesTheMapAndTheKeldyshBaselineRuns) {
   for (const char* law : {"friction", "nonholonomic"}) {
     const fs::path d = fresh_dir(law);
