@@ -537,7 +537,8 @@ class SpotIntegralTable {
   static constexpr double kCornerRadius = 0.5;
   static constexpr double kCornerInset = 0.7;       // graded width / corner radius (< 1/sqrt 2)
   static constexpr double kCornerAngle = M_PI / 4;  // graded angle next to a line's direction
-  static constexpr double kSqueeze = 0.3;   // grade the reference angle when atanh(q) is smaller
+  static constexpr double kSqueeze = 0.3;  // grade the reference angle when atanh(q) is smaller
+  static constexpr double kSqueezeTable = 0.11;  // the same for a table law (reference_quarter)
   static constexpr double kConfocal = 0.3;  // outside an ellipse of aspect below: confocal patch
   static constexpr double kPolarLayers = 0.05;  // but for layers, down to this aspect
   static constexpr std::size_t kMaxGradedBreaks = 8;
@@ -923,11 +924,15 @@ class SpotIntegralTable {
   // The quarter turn of the ellipse's reference angle: the rim's normal and the physical direction
   // turn on the scale atanh(min(q, 1/q)) about the axes (branch points that far off the real
   // line), so the cells are graded geometrically towards both ends at that scale when it is
-  // small.
+  // small. A table law's own table only from a smaller scale: its every band between two
+  // samples is a row of cells across the angle, and each graded cell a band's least degree
+  // more (41 samples at q = 0.2: 38,073 points graded, 25,801 not; at 4 33,988 for 43,477; 201
+  // samples 1.6-2.2x fewer at q = 0.15-0.25 and 3.5-4). Below, the grading pays again (41
+  // samples at q = 0.08: 57,233 graded, 70,986 not).
   std::vector<Axis> reference_quarter() const {
     const double scale = std::atanh(std::min(q_, 1.0 / q_));
     std::vector<double> b = {0.0, 0.5 * M_PI};
-    if (scale < kSqueeze)
+    if (scale < (law_.kind == PressureKind::Table ? kSqueezeTable : kSqueeze))
       for (double w = scale; w < 0.25 * M_PI; w *= 3.0) {
         b.push_back(w);
         b.push_back(0.5 * M_PI - w);
