@@ -24,13 +24,13 @@ bool shows_progress(const app::ShimmyRequest& r) {
 }
 
 // The contact spot's table while it is built (a rough map's takes seconds to minutes), on the
-// progress line; `shown` once it is there.
-app::TableProgress table_progress(bool tty, bool& shown) {
+// progress line; *shown set once it is there (null: the caller clears the line anyway).
+app::TableProgress table_progress(bool tty, bool* shown = nullptr) {
   if (!tty) return {};
-  return [&shown](std::size_t points) {
+  return [shown](std::size_t points) {
     std::fprintf(stderr, "\rcontact table: %zu points", points);
     std::fflush(stderr);
-    shown = true;
+    if (shown) *shown = true;
   };
 }
 
@@ -41,8 +41,7 @@ int run_sweep(const app::ShimmyRequest& r) {
     std::fprintf(stderr, "\r\033[Kshimmy sweep: run %d of %d", done, total);
     std::fflush(stderr);
   };
-  bool shown = false;
-  app::SweepResult s = app::shimmy_sweep(r, progress, table_progress(tty, shown));
+  app::SweepResult s = app::shimmy_sweep(r, progress, table_progress(tty));
   if (tty) std::fprintf(stderr, "\r\033[K");
   const std::filesystem::path dir(r.sweep_dir);
   write_file_atomically((dir / "shimmy.csv").string(), app::sweep_csv(s));
@@ -63,7 +62,7 @@ int run_shimmy(const app::ShimmyRequest& r) {
   }
   if (!r.sweep_param.empty()) throw InputError("--sweep-param needs --speed-sweep");
   bool shown = false;
-  app::ShimmyResult out = app::shimmy(r, table_progress(shows_progress(r), shown));
+  app::ShimmyResult out = app::shimmy(r, table_progress(shows_progress(r), &shown));
   if (shown) std::fprintf(stderr, "\r\033[K");
   if (!r.output.empty()) {
     write_file_atomically(r.output, app::shimmy_csv(out.rows));
