@@ -93,8 +93,8 @@ inline std::shared_ptr<const model::RingIntegralTable> ring_table_for_rows(
 // from the same rays, strips or layers as the rows (an annulus on an ellipse's row costs two: the
 // uniform ellipse at c and at c/B); they crowd where the integrals are hardest, next to the rim,
 // the edges and a map's grid lines, and cost 0.7-1.7 times a row of a test design. A reading
-// costs ~0.3 us (a map's 0.6-1.1 us). The points a table needs range from ~2,400 (ellipse:0.6,
-// Hertz) to ~49,000 (a table law of 41 samples on ellipse:0.1) and 97,000 (a rough random
+// costs ~0.3 us (a map's 0.9-1.7 us). The points a table needs range from ~2,400 (ellipse:0.6,
+// Hertz) to ~49,000 (a table law of 41 samples on ellipse:0.1) and 68,000 (a rough random
 // 20 x 20 map), and a map's build time grows with the square of its cells. So a build is
 // attempted with a budget of as many points as the rows would cost (spot_table_budget) and
 // abandoned before it would exceed it (model::SpotTableOverBudget): the rows are then integrated,

@@ -39,8 +39,9 @@
 //    not vanish). Its points come from MapStripIntegrator (map_strip_integrator.hpp). The
 //    integrals go like d^3 ln d across every grid line and d^2 ln d across the edges, but on a
 //    root cell only the grid cells that touch it are not smooth: each root cell holds the
-//    integrals less theirs (its near cells, up to 3 x 3), which a reading adds back by their
-//    corner sums (map_corner_sums.hpp, 0.2-0.5 us), so that what it holds is analytic on it and
+//    integrals less theirs and those of the ring of grid cells about them (its near cells, up to
+//    5 x 5), which a reading adds back by their corner sums (map_corner_sums.hpp, 0.4-0.7 us),
+//    so that what it holds is analytic on it, two grid cells from its nearest singular line, and
 //    its cells need no grading.
 // Each patch is a grid of root cells. On both sides of every singular line (and about every
 // corner) a cell of width 0.35 is graded as u = u_s +- w ((1 -+ s)/2)^3 in its coordinate
@@ -61,9 +62,10 @@
 // row only the coefficients that matter. The build is deterministic: the same bits on any number
 // of threads. 2,000-8,000 points for an ellipse, 8,000-23,000 for a rectangle at q = 0.4-2.5;
 // an ellipse of aspect 0.001-0.3 5,000-12,000 (the ring law up to 30,000), of aspect 4 11,000;
-// a map ~150 per grid cell (degree 12 each way) and ~500 per outside cell (36 away from the edge):
-// 29,000 for the 13 x 9 footprint, 63,000 for a rough random 15 x 15 grid (66,000 and 192,000
-// with the cells graded, before the near cells were held apart).
+// a map ~100 per grid cell (degree 10 each way) and ~400 per outside cell (36 away from the edge):
+// 22,000 for the 13 x 9 footprint, 42,000 for a rough random 15 x 15 grid (66,000 and 192,000
+// with the cells graded, before the near cells were held apart; 29,000 and 63,000 with only the
+// touching cells held apart).
 //
 // The points. Ellipse: SpotIntegrator, whose rays are closed forms under the power laws (uniform,
 // Hertz, parabolic, power:n: 6-20 us a point); under a table law, layers of the uniform ellipse
@@ -521,9 +523,11 @@ class SpotIntegralTable {
   static constexpr double kCheckTolerance = 5e-11;   // the cell's check point / A0
   static constexpr double kStoreTolerance = 2e-11;   // dropped by the cut into pieces / A0
   static constexpr int kStartDegree = 8;
-  // A map's cells between grid lines settle at degree 12 (make_map_roots): 9, then 18, took
-  // 20 % more points on a rough random grid, 8 then 16 50 % more.
-  static constexpr int kMapStartDegree = 12;
+  // A map's cells between grid lines settle at degree 10 (make_map_roots) with the near cells
+  // reaching kNearRing beyond those that touch them: 9 took 12 % more points on a rough random
+  // grid, 11 3 % more and 8 (then 16) 60 % more. With only the touching cells held apart they
+  // settled at 12 (9 then 18 took 20 % more points, 8 then 16 50 % more).
+  static constexpr int kMapStartDegree = 10;
   int start_degree() const { return kind_ == SpotKind::Map ? kMapStartDegree : kStartDegree; }
   static constexpr int kMaxSampleDegree = 64;
   static constexpr int kStoreDegree = 16;
@@ -543,6 +547,8 @@ class SpotIntegralTable {
   static constexpr double kPolarLayers = 0.05;  // but for layers, down to this aspect
   static constexpr std::size_t kMaxGradedBreaks = 8;
   static constexpr std::size_t kPlainKinks = 64;  // fewer: every kink a cell boundary (make_roots)
+  // A map's near cells (make_near_nodes): those that touch a root cell and this many rings more.
+  static constexpr std::size_t kNearRing = 1;
 
   // Which channels change sign with c_x and with c_y.
   static constexpr bool kOddX[kChannels] = {false, true, false, true,  false, true,
@@ -782,9 +788,12 @@ class SpotIntegralTable {
   // A map's integrals are not smooth across the edges of its grid cells (sigma0 kinks there,
   // d^3 ln d, or jumps at the map's edges, d^2 ln d), but only those of the cells whose closure
   // a root cell's closure meets reach it: the others' edges keep at least a grid cell away. So
-  // each root cell of the box holds the integrals less those cells' (its near cells: up to
-  // 3 x 3 about a grid cell, the edge's cells next to one outside), whose corner sums are
-  // exact wherever c lies and cost 0.2-0.5 us a reading, and what it holds is analytic on it.
+  // each root cell of the box holds the integrals less those cells' and of the ring of cells
+  // about them (its near cells: up to 5 x 5 about a grid cell, two rows of the edge's cells
+  // next to one outside), whose corner sums are exact wherever c lies and cost 0.4-0.7 us a
+  // reading. What it holds is then analytic on it with its nearest singular line two grid cells
+  // away, not one: degree 10 each way where the touching cells alone left 12, and on a rough
+  // 30 x 30 grid half the points (some of whose cells needed 24).
   void make_near_nodes(const MapStripIntegrator& strips) {
     const PressureMap& m = *map_;
     near_nodes_.assign(roots_.size(), {});
@@ -806,7 +815,13 @@ class SpotIntegralTable {
       std::size_t i0, i1, j0, j1;
       touching(m.x, root.a0.lo, root.a0.hi, i0, i1);
       touching(m.y, root.a1.lo, root.a1.hi, j0, j1);
-      if (i1 > i0 && j1 > j0) near_nodes_[r] = strips.corner_nodes(i0, i1, j0, j1);
+      if (!(i1 > i0 && j1 > j0)) continue;
+      // And one grid cell more on every side (kNearRing).
+      i0 -= std::min(i0, kNearRing);
+      j0 -= std::min(j0, kNearRing);
+      i1 = std::min(m.x.size() - 1, i1 + kNearRing);
+      j1 = std::min(m.y.size() - 1, j1 + kNearRing);
+      near_nodes_[r] = strips.corner_nodes(i0, i1, j0, j1);
     }
   }
 
@@ -966,11 +981,13 @@ class SpotIntegralTable {
   // A map (docs/physics.md §9.1): every grid line is a cell boundary, each interval between two
   // lines one root cell, and outside the grid one cell out to the box that holds the disk
   // |c - centre| <= R_near. None is graded: a root cell holds the integrals less those of its
-  // near cells (make_near_nodes), which is analytic on it, the next grid cell's edges a grid
-  // cell away (the integrals themselves go like d^3 ln d across the lines, where sigma0 kinks,
+  // near cells (make_near_nodes), which is analytic on it, the next grid cell's edges two grid
+  // cells away (the integrals themselves go like d^3 ln d across the lines, where sigma0 kinks,
   // and d^2 ln d across the edges, where it jumps: graded towards both, a cell took degree 18
-  // each way where it now takes 12, and the outside cells take 12 along the edge and 36 away
-  // from it). The far patch turns about the map's centre.
+  // each way where it now takes 10, and the outside cells take 10 along the edge and 36 away
+  // from it; split in two away from the edge, at one, two or four grid cells, they took 16-23 %
+  // more points on a rough 15 x 15 grid, up to 55 % on the footprint). The far patch turns about
+  // the map's centre.
   void make_map_roots() {
     const PressureMap& m = *map_;
     const double mx = 0.5 * (m.x.front() + m.x.back()), my = 0.5 * (m.y.front() + m.y.back());
