@@ -7,12 +7,20 @@
 
 namespace frictionid {
 
-enum class FitStage { GlobalSearch, LocalFit };
+// Before the search, the exact model on a non-circular spot computes its rows' integrals once
+// (docs/physics.md §9.7): ContactTable while it attempts a table of them, ContactRows while it
+// integrates or reads the rows.
+enum class FitStage { GlobalSearch, LocalFit, ContactTable, ContactRows };
 
 struct FitProgress {
   FitStage stage = FitStage::GlobalSearch;
-  long done = 0;      // global search: evaluations so far; local fit: iterations so far
-  long total = 0;     // global search: the evaluation budget; local fit: the iteration limit
+  // global search: evaluations so far; local fit: iterations so far; contact table: its points
+  // so far; contact rows: rows done
+  long done = 0;
+  // global search: the evaluation budget; local fit: the iteration limit; contact table: its
+  // budget of points (the build is abandoned, and the rows integrated, before it would exceed
+  // it); contact rows: the rows
+  long total = 0;
   int start = 0;      // local fit: which start (1-based), of `starts`
   int starts = 0;     // local fits in this run (the last one may refine on all rows)
   double cost = 0.0;  // local fit: the current cost
@@ -21,8 +29,8 @@ struct FitProgress {
 class FitObserver {
  public:
   virtual ~FitObserver() = default;
-  // Called from the fitting thread every few hundred global evaluations and every local
-  // iteration; keep it cheap.
+  // Called from the fitting thread every few hundred global evaluations, every local iteration
+  // and every few thousand contact points or rows; keep it cheap.
   virtual void on_progress(const FitProgress& /*progress*/) {}
   // Diagnostics a user may want to see, e.g. the solver's full report of the final local fit.
   virtual void on_log(const std::string& /*line*/) {}

@@ -90,8 +90,10 @@ def fit(
             ``threading.Event``): once set, from any thread, the fit stops within about 50 ms
             of solver work and raises :class:`FitCancelled`.
         progress: called in the fitting thread, at most every 50 ms, with a dict ``stage``
-            (``"global search"`` or ``"local fit"``), ``done``, ``total``, ``start``,
-            ``starts``, ``cost``; an exception it raises stops the fit and is raised by fit().
+            (``"global search"`` or ``"local fit"``; before them, on a non-circular spot,
+            ``"contact table"`` with its points and budget and ``"contact integrals"`` with the
+            rows done), ``done``, ``total``, ``start``, ``starts``, ``cost``; an exception it
+            raises stops the fit and is raised by fit().
 
     Returns:
         A :class:`FitResult`.

@@ -19,11 +19,22 @@ TerminalObserver::~TerminalObserver() {
 void TerminalObserver::on_progress(const FitProgress& p) {
   if (!progress_) return;
   line_shown_ = true;
-  if (p.stage == FitStage::GlobalSearch)
-    std::fprintf(stderr, "\rfrictionid: global search %ld/%ld evaluations   ", p.done, p.total);
-  else
-    std::fprintf(stderr, "\rfrictionid: local fit %d/%d, iteration %ld, cost %.6e   ", p.start,
-                 p.starts, p.done, p.cost);
+  switch (p.stage) {
+    case FitStage::GlobalSearch:
+      std::fprintf(stderr, "\rfrictionid: global search %ld/%ld evaluations   ", p.done, p.total);
+      break;
+    case FitStage::LocalFit:
+      std::fprintf(stderr, "\rfrictionid: local fit %d/%d, iteration %ld, cost %.6e   ", p.start,
+                   p.starts, p.done, p.cost);
+      break;
+    case FitStage::ContactTable:
+      std::fprintf(stderr, "\rfrictionid: contact table %ld points (of at most %ld)   ", p.done,
+                   p.total);
+      break;
+    case FitStage::ContactRows:
+      std::fprintf(stderr, "\rfrictionid: contact integrals %ld/%ld rows   ", p.done, p.total);
+      break;
+  }
 }
 
 void TerminalObserver::on_log(const std::string& line) {

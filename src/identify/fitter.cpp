@@ -70,9 +70,7 @@ FittedRun fit_keeping_problem(const FitSettings& settings, const Dataset& data,
   }
 
   // A non-circular spot with its aspect and pressure shape fixed: integrate every row once.
-  if (auto cache = spot_cache_for_rows(data, s, lp.threads, [observer] {
-        return observer != nullptr && observer->cancelled();
-      })) {
+  if (auto cache = spot_cache_for_rows(data, s, lp.threads, observer)) {
     run.settings->contact.cache = std::move(cache);
   }
 

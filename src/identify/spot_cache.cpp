@@ -2,7 +2,9 @@
 
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <mutex>
+#include <thread>
 #include <vector>
 
 #include <frictionid/fit_error.hpp>
@@ -14,8 +16,10 @@
 
 namespace frictionid {
 
-std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(
-    const Dataset& data, const FitSettings& s, int threads, const std::function<bool()>& stop) {
+std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(const Dataset& data,
+                                                                    const FitSettings& s,
+                                                                    int threads,
+                                                                    FitObserver* observer) {
   if (s.model != ModelKind::Exact || s.contact.kind == model::SpotKind::Circle) return nullptr;
   const bool power = s.law.kind == model::PressureKind::Power;
   if (power && !s.params[kN].fixed) return nullptr;
@@ -31,11 +35,32 @@ std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(
   // (~0.3-0.5 us) instead of integrating each (6-300 us), where the table needs fewer points
   // than the rows (model_variant.hpp, spot_table_budget). The table stays within 3e-11 of the
   // load of the integrals.
+  const auto stop = [observer] { return observer != nullptr && observer->cancelled(); };
+  // Progress goes to the observer from the calling thread only (fit_observer.hpp), which works
+  // on the table and the rows beside the others; the counts are everyone's.
+  const std::thread::id caller = std::this_thread::get_id();
+  auto report = [observer](FitStage stage, long done, long total) {
+    FitProgress p;
+    p.stage = stage;
+    p.done = done;
+    p.total = total;
+    observer->on_progress(p);
+  };
   std::unique_ptr<const model::SpotIntegralTable> table;
   if (const std::size_t budget = spot_table_budget(s.contact, law, spinning_rows)) {
+    std::atomic<long> points{0};
+    long shown = 0;  // the caller's
+    const std::function<bool()> count_and_stop = [&] {
+      const long n = ++points;
+      if (observer && std::this_thread::get_id() == caller && n - shown >= kTablePointsStep) {
+        shown = n;
+        report(FitStage::ContactTable, n, static_cast<long>(budget));
+      }
+      return stop();
+    };
     try {
       table = std::make_unique<const model::SpotIntegralTable>(
-          s.contact, law, q, stop,
+          s.contact, law, q, count_and_stop,
           [threads](std::size_t count, const std::function<void(std::size_t)>& work) {
             for_each_chunk(count, threads, work);
           },
@@ -51,12 +76,19 @@ std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(
   std::vector<model::SpotIntegrals> values(rows);
   std::vector<std::uint8_t> spinning(rows, 0);
   std::atomic<bool> stopped{false};
+  std::atomic<long> done{0};
+  long shown = 0;  // the caller's
   for_each_chunk(chunk_count(rows), threads, [&](std::size_t c) {
-    if (stopped.load(std::memory_order_relaxed) || (stop && stop())) {
+    if (stopped.load(std::memory_order_relaxed) || stop()) {
       stopped = true;
       return;
     }
     const std::size_t end = std::min(rows, (c + 1) * kChunkRows);
+    const long now = done.load(std::memory_order_relaxed);
+    if (observer && std::this_thread::get_id() == caller && now - shown >= kRowsStep) {
+      shown = now;
+      report(FitStage::ContactRows, now, static_cast<long>(rows));
+    }
     for (std::size_t i = c * kChunkRows; i < end; ++i) {
       if (data.omega[i] == 0.0 || !std::isfinite(data.omega[i])) continue;
       const auto [cx, cy] =
@@ -65,6 +97,7 @@ std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(
       values[i] = table ? (*table)(cx, cy) : integrate(cx, cy);
       spinning[i] = 1;
     }
+    done += static_cast<long>(end - c * kChunkRows);
   });
   if (stopped) throw FitError("interrupted");
   auto cache = std::make_shared<model::SpotIntegralCache>(q, n);

@@ -3,10 +3,10 @@
 // every row dozens of times with the same aspect and pressure shape.
 #pragma once
 
-#include <functional>
 #include <memory>
 
 #include <frictionid/dataset.hpp>
+#include <frictionid/fit_observer.hpp>
 #include <frictionid/fit_settings.hpp>
 #include <frictionid/model/spot_integral_cache.hpp>
 
@@ -15,9 +15,16 @@ namespace frictionid {
 // The integrals of every spinning row at the settings' q and exponent n (their initial values),
 // or nullptr when nothing can be cached: the circle, another model, or n free (its integrals
 // change at every step). With q free they serve the global stage, which holds q at its start
-// (fit_search.cpp); the local stage's models, whose q moves, integrate. Spread over `threads`;
-// `stop` is asked between chunks and a true answer ends the build with FitError("interrupted").
-std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(
-    const Dataset& data, const FitSettings& s, int threads, const std::function<bool()>& stop);
+// (fit_search.cpp); the local stage's models, whose q moves, integrate. Spread over `threads`.
+// The observer (may be null) is asked to cancel before every point of a table and between
+// chunks of rows, and a true answer ends the build with FitError("interrupted"); it hears the
+// table's points (FitStage::ContactTable, every kTablePointsStep) and the rows done
+// (FitStage::ContactRows, every kRowsStep), in the calling thread.
+inline constexpr long kTablePointsStep = 4096;
+inline constexpr long kRowsStep = 1024;
+std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(const Dataset& data,
+                                                                    const FitSettings& s,
+                                                                    int threads,
+                                                                    FitObserver* observer);
 
 }  // namespace frictionid

@@ -15,7 +15,17 @@ std::set<const PythonObserver*> g_running;
 std::atomic<bool> g_exiting{false};
 
 const char* stage_name(FitStage s) {
-  return s == FitStage::GlobalSearch ? "global search" : "local fit";
+  switch (s) {
+    case FitStage::GlobalSearch:
+      return "global search";
+    case FitStage::LocalFit:
+      return "local fit";
+    case FitStage::ContactTable:
+      return "contact table";
+    case FitStage::ContactRows:
+      return "contact integrals";
+  }
+  return "";
 }
 
 }  // namespace

@@ -29,7 +29,9 @@ using frictionid::test::CommandResult;
 using frictionid::test::matched_digits;
 using frictionid::test::read_file;
 using frictionid::test::run_frictionid;
+using frictionid::test::run_frictionid_split;
 using frictionid::test::ScratchDir;
+using frictionid::test::SplitResult;
 using frictionid::test::without_traceability;
 using json = nlohmann::json;
 
@@ -255,6 +257,31 @@ TEST(ContactSpotCli, AFitOnAMapNamesItAndFingerprintsItsFile) {
   EXPECT_NE(read_file(dir.path() / "report" / "report.md")
                 .find("# frictionid fit: model exact, pressure map, contact map:"),
             std::string::npos);
+}
+
+// Before the search a fit on a map computes its rows' integrals (~7 us a row on the footprint,
+// ~75 us on a rough 30 x 30 grid): --progress shows the rows done on its line, then the search;
+// the report is the one written without it.
+TEST(ContactSpotCli, AFitOnAMapShowsItsRowsIntegralsOnTheProgressLine) {
+  const ScratchDir dir("contact_" + test_name());
+  const std::string data = dir / "map.csv";
+  ASSERT_EQ(run_frictionid("generate --model exact --contact map:" + kFootprint +
+                           " --param f=0.8,h=0.05,h_y=0.03 --rows 3000 --output " + data)
+                .code,
+            0);
+  const std::string fit = "fit " + data + " --model exact --contact map:" + kFootprint +
+                          " --threads 1 --global-evaluations 300 --report ";
+  const SplitResult shown = run_frictionid_split(fit + (dir / "shown") + " --progress");
+  ASSERT_EQ(shown.code, 0) << shown.err;
+  const std::size_t rows = shown.err.find("\rfrictionid: contact integrals 1024/3000 rows");
+  ASSERT_NE(rows, std::string::npos) << shown.err;
+  EXPECT_NE(shown.err.find("\rfrictionid: contact integrals 2048/3000 rows"), std::string::npos);
+  const std::size_t search = shown.err.find("\rfrictionid: global search");
+  ASSERT_NE(search, std::string::npos) << shown.err;
+  EXPECT_LT(rows, search);
+  ASSERT_EQ(run_frictionid(fit + (dir / "quiet")).code, 0);
+  EXPECT_EQ(without_traceability(read_file(dir.path() / "shown" / "report.json")),
+            without_traceability(read_file(dir.path() / "quiet" / "report.json")));
 }
 
 TEST(ContactSpotCli, CoefficientsOfASpotAreItsSlopeMatchedOnes) {

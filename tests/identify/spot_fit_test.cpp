@@ -6,7 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
+#include <thread>
+#include <vector>
 
+#include <frictionid/fit_observer.hpp>
 #include <frictionid/model/spot_integral_table.hpp>
 #include <frictionid/model/spot_point_integrator.hpp>
 #include <frictionid/model_variant.hpp>
@@ -185,6 +189,104 @@ TEST(SpotFit, RowsFewerThanATablesPointsAreIntegratedEach) {
   // One pass over rows (eval, generate) decides the same way.
   EXPECT_FALSE(spot_for_rows(ModelKind::Exact, Law::hertz(), 0.7, 1.0, points - 1, spot).table);
   EXPECT_TRUE(spot_for_rows(ModelKind::Exact, Law::hertz(), 0.7, 1.0, points, spot).table);
+}
+
+// What a FitObserver hears of the pass over the rows, and from which thread.
+class RecordingObserver : public FitObserver {
+ public:
+  struct Report {
+    FitStage stage;
+    long done, total;
+    std::thread::id thread;
+  };
+  void on_progress(const FitProgress& p) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    reports.push_back({p.stage, p.done, p.total, std::this_thread::get_id()});
+  }
+  std::vector<Report> reports;
+
+ private:
+  std::mutex mutex_;
+};
+
+bool same_cache(const model::SpotIntegralCache& a, const model::SpotIntegralCache& b,
+                const Dataset& d) {
+  for (std::size_t i = 0; i < d.rows(); ++i) {
+    const auto [cx, cy] = model::rotation_centre(d.v_x[i], d.v_y[i], d.omega[i], d.R[i]);
+    if (a.find(cx, cy)->channels() != b.find(cx, cy)->channels()) return false;
+  }
+  return true;
+}
+
+// The pass over a fit's rows takes seconds on a rough map or an elongated table law: the observer
+// hears the table's points against its budget, then the rows done, every kTablePointsStep and
+// kRowsStep, and the cache is the one computed without it. On one thread the counts are exact.
+TEST(SpotFit, ThePassOverTheRowsReportsTheTablesPointsThenTheRows) {
+  const auto spot = model::ContactSpot::rect(0.7);
+  const std::size_t points = table_points(spot, Law::hertz(), 0.7);
+  ASSERT_GT(points, kTablePointsStep);
+  SyntheticDesign design = small_design();
+  design.rows = points + 100;  // every row spins: the budget
+  const Dataset d = generate_dataset(ModelKind::Exact, Law::hertz(), truth_on(Law::hertz(), spot),
+                                     design, NoiseSpec{}, 6, spot);
+  const FitSettings s = FitSettings::defaults(ModelKind::Exact, Law::hertz(), "hertz", spot);
+  RecordingObserver seen;
+  const auto cache = spot_cache_for_rows(d, s, 1, &seen);
+  ASSERT_TRUE(cache);
+  std::vector<long> table, rows;
+  for (const auto& r : seen.reports) {
+    if (r.stage == FitStage::ContactTable) {
+      EXPECT_TRUE(rows.empty()) << "the table comes first";
+      EXPECT_EQ(r.total, static_cast<long>(d.rows()));
+      table.push_back(r.done);
+    } else {
+      ASSERT_EQ(r.stage, FitStage::ContactRows);
+      EXPECT_EQ(r.total, static_cast<long>(d.rows()));
+      rows.push_back(r.done);
+    }
+  }
+  std::vector<long> want_table, want_rows;
+  for (long n = kTablePointsStep; n <= static_cast<long>(points); n += kTablePointsStep)
+    want_table.push_back(n);
+  // Reported before each chunk of kChunkRows, once kRowsStep more are done.
+  for (long n = kRowsStep; n < static_cast<long>(d.rows()); n += kRowsStep) want_rows.push_back(n);
+  EXPECT_EQ(table, want_table);
+  EXPECT_EQ(rows, want_rows);
+  EXPECT_TRUE(same_cache(*cache, *spot_cache_for_rows(d, s, 1, nullptr), d));
+}
+
+// On several threads the observer still hears from the calling thread only
+// (fit_observer.hpp), with counts that only grow; a table abandoned over its budget (fewer rows
+// than its points) reports no more points than the budget, and then the rows.
+TEST(SpotFit, ThePassOverTheRowsReportsFromTheCallingThreadOnly) {
+  const auto spot = model::ContactSpot::rect(0.7);
+  SyntheticDesign design = small_design();
+  design.rows = 3 * kSpotTableMinRows;
+  ASSERT_LT(design.rows, table_points(spot, Law::hertz(), 0.7));
+  const Dataset d = generate_dataset(ModelKind::Exact, Law::hertz(), truth_on(Law::hertz(), spot),
+                                     design, NoiseSpec{}, 6, spot);
+  const FitSettings s = FitSettings::defaults(ModelKind::Exact, Law::hertz(), "hertz", spot);
+  RecordingObserver seen;
+  const auto cache = spot_cache_for_rows(d, s, 2, &seen);
+  ASSERT_TRUE(cache);
+  long last_points = 0, last_rows = 0;
+  bool any_rows = false;
+  for (const auto& r : seen.reports) {
+    EXPECT_EQ(r.thread, std::this_thread::get_id());
+    if (r.stage == FitStage::ContactTable) {
+      EXPECT_FALSE(any_rows);
+      EXPECT_GT(r.done, last_points);
+      EXPECT_LE(r.done, r.total);
+      last_points = r.done;
+    } else {
+      any_rows = true;
+      EXPECT_GT(r.done, last_rows);
+      EXPECT_LT(r.done, static_cast<long>(d.rows()));
+      last_rows = r.done;
+    }
+  }
+  EXPECT_TRUE(any_rows);
+  EXPECT_TRUE(same_cache(*cache, *spot_cache_for_rows(d, s, 1, nullptr), d));
 }
 
 // Work whose points are not known in advance (simulate, shimmy) takes the table, or integrates

@@ -163,3 +163,20 @@ def test_a_pickled_fit_on_a_spot_writes_its_report(ellipse_csv, tmp_path):
     again = json.loads((tmp_path / "again" / "report.json").read_text())
     assert again["contact"] == "ellipse:0.7"
     assert again["parameters"]["h_y"]["value"] == r.params["h_y"]
+
+
+def test_progress_names_the_contact_stages_before_the_search(run_cli, tmp_path, footprint):
+    # Before the search the rows' integrals on the map are computed once; the callback hears
+    # that stage first ("contact integrals", rows done of all).
+    data = tmp_path / "map.csv"
+    run_cli("generate", "--model", "exact", "--contact", f"map:{footprint}", "--param",
+            "f=0.8,h=0.05,h_y=0.03", "--rows", "3000", "--output", data)
+    seen = []
+    fit = frictionid.fit(data, model="exact", contact=f"map:{footprint}", threads=1,
+                         global_evaluations=300, progress=lambda p: seen.append(dict(p)))
+    assert fit.rows == 3000
+    stages = [p["stage"] for p in seen]
+    assert stages[0] == "contact integrals", stages
+    assert seen[0]["total"] == 3000 and 0 < seen[0]["done"] < 3000
+    # (The callback hears at most every 50 ms: the search may come and go in between.)
+    assert set(stages) <= {"contact table", "contact integrals", "global search", "local fit"}
