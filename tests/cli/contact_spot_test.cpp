@@ -235,13 +235,19 @@ TEST(ContactSpotCli, CompareFitsCircleAndEllipseSideBySide) {
             std::string::npos);
 }
 
+// `rows` rows of the exact model on the footprint map (f = 0.8, h = 0.05, h_y = 0.03) written to
+// `data`: the exit code.
+int generate_on_footprint(const std::string& data, int rows) {
+  return run_frictionid("generate --model exact --contact map:" + kFootprint +
+                        " --param f=0.8,h=0.05,h_y=0.03 --rows " + std::to_string(rows) +
+                        " --output " + data)
+      .code;
+}
+
 TEST(ContactSpotCli, AFitOnAMapNamesItAndFingerprintsItsFile) {
   const ScratchDir dir("contact_" + test_name());
   const std::string data = dir / "map.csv";
-  ASSERT_EQ(run_frictionid("generate --model exact --contact map:" + kFootprint +
-                           " --param f=0.8,h=0.05,h_y=0.03 --rows 100 --output " + data)
-                .code,
-            0);
+  ASSERT_EQ(generate_on_footprint(data, 100), 0);
   const CommandResult f =
       run_frictionid("fit " + data + " --model exact --contact map:" + kFootprint +
                      " --threads 2 --report " + (dir / "report"));
@@ -265,10 +271,7 @@ TEST(ContactSpotCli, AFitOnAMapNamesItAndFingerprintsItsFile) {
 TEST(ContactSpotCli, AFitOnAMapShowsItsRowsIntegralsOnTheProgressLine) {
   const ScratchDir dir("contact_" + test_name());
   const std::string data = dir / "map.csv";
-  ASSERT_EQ(run_frictionid("generate --model exact --contact map:" + kFootprint +
-                           " --param f=0.8,h=0.05,h_y=0.03 --rows 3000 --output " + data)
-                .code,
-            0);
+  ASSERT_EQ(generate_on_footprint(data, 3000), 0);
   const std::string fit = "fit " + data + " --model exact --contact map:" + kFootprint +
                           " --threads 1 --global-evaluations 300 --report ";
   const SplitResult shown = run_frictionid_split(fit + (dir / "shown") + " --progress");

@@ -209,6 +209,15 @@ class RecordingObserver : public FitObserver {
   std::mutex mutex_;
 };
 
+// Hertz on rect:0.7 over `rows` rows of the small design, every one spinning.
+Dataset rect_rows(std::size_t rows) {
+  const auto spot = model::ContactSpot::rect(0.7);
+  SyntheticDesign design = small_design();
+  design.rows = rows;
+  return generate_dataset(ModelKind::Exact, Law::hertz(), truth_on(Law::hertz(), spot), design,
+                          NoiseSpec{}, 6, spot);
+}
+
 bool same_cache(const model::SpotIntegralCache& a, const model::SpotIntegralCache& b,
                 const Dataset& d) {
   for (std::size_t i = 0; i < d.rows(); ++i) {
@@ -225,10 +234,7 @@ TEST(SpotFit, ThePassOverTheRowsReportsTheTablesPointsThenTheRows) {
   const auto spot = model::ContactSpot::rect(0.7);
   const std::size_t points = table_points(spot, Law::hertz(), 0.7);
   ASSERT_GT(points, kTablePointsStep);
-  SyntheticDesign design = small_design();
-  design.rows = points + 100;  // every row spins: the budget
-  const Dataset d = generate_dataset(ModelKind::Exact, Law::hertz(), truth_on(Law::hertz(), spot),
-                                     design, NoiseSpec{}, 6, spot);
+  const Dataset d = rect_rows(points + 100);  // the budget
   const FitSettings s = FitSettings::defaults(ModelKind::Exact, Law::hertz(), "hertz", spot);
   RecordingObserver seen;
   const auto cache = spot_cache_for_rows(d, s, 1, &seen);
@@ -260,11 +266,8 @@ TEST(SpotFit, ThePassOverTheRowsReportsTheTablesPointsThenTheRows) {
 // than its points) reports no more points than the budget, and then the rows.
 TEST(SpotFit, ThePassOverTheRowsReportsFromTheCallingThreadOnly) {
   const auto spot = model::ContactSpot::rect(0.7);
-  SyntheticDesign design = small_design();
-  design.rows = 3 * kSpotTableMinRows;
-  ASSERT_LT(design.rows, table_points(spot, Law::hertz(), 0.7));
-  const Dataset d = generate_dataset(ModelKind::Exact, Law::hertz(), truth_on(Law::hertz(), spot),
-                                     design, NoiseSpec{}, 6, spot);
+  ASSERT_LT(3 * kSpotTableMinRows, table_points(spot, Law::hertz(), 0.7));
+  const Dataset d = rect_rows(3 * kSpotTableMinRows);
   const FitSettings s = FitSettings::defaults(ModelKind::Exact, Law::hertz(), "hertz", spot);
   RecordingObserver seen;
   const auto cache = spot_cache_for_rows(d, s, 2, &seen);

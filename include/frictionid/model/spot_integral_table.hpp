@@ -40,7 +40,7 @@
 //    integrals go like d^3 ln d across every grid line and d^2 ln d across the edges, but on a
 //    root cell only the grid cells that touch it are not smooth: each root cell holds the
 //    integrals less theirs and those of the ring of grid cells about them (its near cells, up to
-//    5 x 5), which a reading adds back by their corner sums (map_corner_sums.hpp, 0.4-0.7 us),
+//    5 x 5), which a reading adds back by their corner sums (map_corner_sums.hpp, 0.6-0.9 us),
 //    so that what it holds is analytic on it, two grid cells from its nearest singular line, and
 //    its cells need no grading.
 // Each patch is a grid of root cells. On both sides of every singular line (and about every
@@ -790,10 +790,10 @@ class SpotIntegralTable {
   // a root cell's closure meets reach it: the others' edges keep at least a grid cell away. So
   // each root cell of the box holds the integrals less those cells' and of the ring of cells
   // about them (its near cells: up to 5 x 5 about a grid cell, two rows of the edge's cells
-  // next to one outside), whose corner sums are exact wherever c lies and cost 0.4-0.7 us a
+  // next to one outside), whose corner sums are exact wherever c lies and cost 0.6-0.9 us a
   // reading. What it holds is then analytic on it with its nearest singular line two grid cells
   // away, not one: degree 10 each way where the touching cells alone left 12, and on a rough
-  // 30 x 30 grid half the points (some of whose cells needed 24).
+  // 30 x 30 grid half the points.
   void make_near_nodes(const MapStripIntegrator& strips) {
     const PressureMap& m = *map_;
     near_nodes_.assign(roots_.size(), {});
