@@ -112,6 +112,10 @@ inline std::size_t spot_table_budget(const model::ContactSpot& spot,
   return rows > most / points_per_row ? most : rows * points_per_row;
 }
 
+// A table's build, asked before every point, reports its progress every this many points (a fit's
+// progress line, shimmy's).
+inline constexpr long kTablePointsStep = 4096;
+
 // The spot with its integrals tabulated for the exact variant at aspect q and exponent n (power
 // law; ignored otherwise): an ellipse, a rectangle or a map, not the circle (the ring model).
 // `threads` as SpotIntegralTable's; `stop` may end the build early

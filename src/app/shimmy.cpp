@@ -109,7 +109,7 @@ ShimmyTables shimmy_tables(const ModelSetup& s, const TableProgress& progress) {
     if (progress)
       count = [&] {
         const std::size_t n = ++points;
-        if (n % kTablePointsStep == 0) {
+        if (n % static_cast<std::size_t>(kTablePointsStep) == 0) {
           const std::lock_guard<std::mutex> lock(one_at_a_time);
           progress(n);
         }

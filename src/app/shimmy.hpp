@@ -17,11 +17,11 @@
 
 namespace frictionid::app {
 
-// The points a contact spot's table has computed so far, every kTablePointsStep of them while
-// ShimmyCase builds it (a rough map's table takes seconds to minutes: its build grows as the
-// square of the cells). Called from the build's threads, one call at a time.
+// The points a contact spot's table has computed so far, every kTablePointsStep of them
+// (model_variant.hpp) while ShimmyCase builds it (a rough map's table takes seconds to minutes:
+// its build grows as the square of the cells). Called from the build's threads, one call at a
+// time.
 using TableProgress = std::function<void(std::size_t points)>;
-inline constexpr std::size_t kTablePointsStep = 4096;
 
 // The checked request turned into what the integrator needs: the model (from --param or a
 // report.json), the wheel, the settings and the friction as a callable.

@@ -18,9 +18,8 @@ namespace frictionid {
 // (fit_search.cpp); the local stage's models, whose q moves, integrate. Spread over `threads`.
 // The observer (may be null) is asked to cancel before every point of a table and between
 // chunks of rows, and a true answer ends the build with FitError("interrupted"); it hears the
-// table's points (FitStage::ContactTable, every kTablePointsStep) and the rows done
-// (FitStage::ContactRows, every kRowsStep), in the calling thread.
-inline constexpr long kTablePointsStep = 4096;
+// table's points (FitStage::ContactTable, every kTablePointsStep of model_variant.hpp) and the
+// rows done (FitStage::ContactRows, every kRowsStep), in the calling thread.
 inline constexpr long kRowsStep = 1024;
 std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(const Dataset& data,
                                                                     const FitSettings& s,
