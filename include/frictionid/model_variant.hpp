@@ -138,25 +138,27 @@ inline model::ContactSpot spot_with_table(
 // The spot with its table, or as given, integrated point by point, where the table would need
 // more than `max_points` points: by default model::SpotIntegralTable::kMaxPoints (a map of
 // thousands of cells), for work whose points are not known in advance (simulate, shimmy).
-// `stop` as spot_with_table's (asked before every point: a progress count may ride on it).
+// `stop` and `threads` as spot_with_table's (`stop` is asked before every point: a progress count
+// may ride on it).
 inline model::ContactSpot spot_with_table_if_bounded(
     ModelKind kind, const model::PressureLaw<double>& law, double q, double n,
     const model::ContactSpot& spot, std::size_t max_points = model::SpotIntegralTable::kMaxPoints,
-    const std::function<bool()>& stop = {}) {
+    const std::function<bool()>& stop = {}, int threads = 0) {
   try {
-    return spot_with_table(kind, law, q, n, spot, stop, 0, max_points);
+    return spot_with_table(kind, law, q, n, spot, stop, threads, max_points);
   } catch (const model::SpotTableOverBudget&) {
     return spot;
   }
 }
 
 // The same for one pass over `rows` rows: the spot as given where integrating them is cheaper
-// (spot_table_budget).
+// (spot_table_budget). The table is built on `threads` threads (0: every hardware thread).
 inline model::ContactSpot spot_for_rows(ModelKind kind, const model::PressureLaw<double>& law,
                                         double q, double n, std::size_t rows,
-                                        const model::ContactSpot& spot) {
+                                        const model::ContactSpot& spot, int threads = 0) {
   const std::size_t budget = spot_table_budget(spot, law, rows);
-  return budget == 0 ? spot : spot_with_table_if_bounded(kind, law, q, n, spot, budget);
+  return budget == 0 ? spot
+                     : spot_with_table_if_bounded(kind, law, q, n, spot, budget, {}, threads);
 }
 
 // Evaluates one variant for a fixed parameter vector; construct once, call per row.

@@ -26,6 +26,7 @@ def evaluate(
     R: ArrayLike,
     *,
     contact: str = "circle",
+    threads: int = 0,
 ) -> Dict[str, np.ndarray]:
     """The resultants ``model`` predicts, vectorised (numpy broadcasting over the inputs).
 
@@ -39,6 +40,7 @@ def evaluate(
         v_x, v_y, omega: slip velocity [m/s] and spin [rad/s], finite.
         N, R: normal load [N] and contact radius [m], finite and > 0.
         contact: the contact spot, as for :func:`fit` (``--contact``).
+        threads: threads for the rows (0: every core); the values do not depend on it.
 
     Returns:
         ``{"T_x", "T_y", "M_z", "M_roll", "N"}`` -> float64 arrays of the broadcast shape, and
@@ -55,7 +57,7 @@ def evaluate(
     flat = [np.ascontiguousarray(a.reshape(-1)) for a in arrays]
     out = _frictionid.evaluate(model, "hertz" if pressure is None else pressure,
                                _options.values("--param", params), *flat, contact=contact,
-                               pressure_given=pressure is not None)
+                               pressure_given=pressure is not None, threads=threads)
     return {k: v.reshape(shape) for k, v in out.items()}
 
 
@@ -100,6 +102,7 @@ def generate(
     spin: float = 2.0,
     slip_angles_deg: Sequence[float] = (0.0,),
     forward_only: bool = False,
+    threads: int = 0,
 ) -> "pandas.DataFrame":
     """A synthetic dataset from ``model``, as ``frictionid generate`` writes it (same design,
     same seeded noise, same numbers).
@@ -114,6 +117,7 @@ def generate(
         loads: normal loads [N], cycled; R: contact radius [m]; spin: |omega| [rad/s].
         slip_angles_deg: slip directions [degrees], cycled.
         forward_only: no backward-slipping rows (else every 4th row has v_x < 0).
+        threads: threads for the model's rows (0: every core); the data do not depend on it.
 
     Returns:
         A pandas DataFrame with the canonical columns (``M_tilt`` too on a spot other than the
@@ -127,7 +131,8 @@ def generate(
                                eps_max,
                                [float(x) for x in loads], R, spin,
                                [float(x) for x in slip_angles_deg], forward_only,
-                               contact=contact, pressure_given=pressure is not None)
+                               contact=contact, pressure_given=pressure is not None,
+                               threads=threads)
     df = _data.frame(out["columns"])
     df.attrs["truth"] = dict(out["truth"]["parameters"])
     df.attrs["pressure"] = out["truth"]["pressure"]

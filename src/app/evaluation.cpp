@@ -2,12 +2,15 @@
 
 #include <cmath>
 #include <iterator>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include <frictionid/io/dataset_csv.hpp>
 #include <frictionid/io/dataset_writer.hpp>
 #include <frictionid/io/input_error.hpp>
+#include "app/option_parsers.hpp"
+#include "identify/row_predictions.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv_cell.hpp"
 
@@ -38,11 +41,18 @@ std::size_t evaluate_file(const EvalRequest& r) {
   if (r.output.empty()) throw InputError("eval --input needs --output FILE");
   if (r.vx || r.vy || r.omega)
     throw InputError("give either --input or --vx/--vy/--omega, not both");
+  check_thread_option(r.threads);
   const Dataset d = load_dataset_csv(r.input, r.columns, false);
   const ModelEvaluator<double> eval(
       s.kind, s.law, s.params.data(),
       ring_table_for_rows(s.kind, s.law, s.params[kN], false, d.rows(), s.contact), nullptr,
-      spot_for_rows(s.kind, s.law, s.params[kQ], s.params[kN], d.rows(), s.contact));
+      spot_for_rows(s.kind, s.law, s.params[kQ], s.params[kN], d.rows(), s.contact, r.threads));
+  const std::vector<model::Resultants<double>> values = predict_rows(
+      eval, d.rows(),
+      [&d](std::size_t i) {
+        return model::Kinematics{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i], d.tilt_sign_at(i)};
+      },
+      r.threads);
   const bool tilt = shows_tilt(s);
   std::string text = dataset_csv_text(d);
   const std::size_t header_end = text.find('\n');
@@ -64,8 +74,7 @@ std::size_t evaluate_file(const EvalRequest& r) {
     out.append(text, pos, eol - pos);
     pos = eol + 1;
     for (const auto& column : d.extra_values) (out += ',') += csv_cell(column[i]);
-    const auto p =
-        eval(model::Kinematics{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i], d.tilt_sign_at(i)});
+    const model::Resultants<double>& p = values[i];
     fmt::format_to(std::back_inserter(out), ",{:.17g},{:.17g},{:.17g},{:.17g}", p.T_x, p.T_y, p.M_z,
                    p.M_roll);
     if (tilt) fmt::format_to(std::back_inserter(out), ",{:.17g}", p.M_tilt);
@@ -75,7 +84,8 @@ std::size_t evaluate_file(const EvalRequest& r) {
   return d.rows();
 }
 
-ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& k) {
+ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& k, int threads) {
+  check_thread_option(threads);
   const double* inputs[] = {k.v_x, k.v_y, k.omega, k.N, k.R};
   const char* names[] = {"v_x", "v_y", "omega", "N", "R"};
   for (int c = 0; c < 5; ++c)
@@ -91,9 +101,15 @@ ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& 
   const ModelEvaluator<double> eval(
       s.kind, s.law, s.params.data(),
       ring_table_for_rows(s.kind, s.law, s.params[kN], false, k.rows, s.contact), nullptr,
-      spot_for_rows(s.kind, s.law, s.params[kQ], s.params[kN], k.rows, s.contact));
+      spot_for_rows(s.kind, s.law, s.params[kQ], s.params[kN], k.rows, s.contact, threads));
+  const std::vector<model::Resultants<double>> predicted = predict_rows(
+      eval, k.rows,
+      [&k](std::size_t i) {
+        return model::Kinematics{k.v_x[i], k.v_y[i], k.omega[i], k.N[i], k.R[i]};
+      },
+      threads);
   for (std::size_t i = 0; i < k.rows; ++i) {
-    const auto p = eval(model::Kinematics{k.v_x[i], k.v_y[i], k.omega[i], k.N[i], k.R[i]});
+    const model::Resultants<double>& p = predicted[i];
     out.T_x[i] = p.T_x;
     out.T_y[i] = p.T_y;
     out.M_z[i] = p.M_z;

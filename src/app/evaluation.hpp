@@ -19,8 +19,8 @@ nlohmann::ordered_json evaluate_point(const EvalRequest& r);
 
 // Every row of r.input (dataset columns; channels optional) written to r.output: the row as read,
 // the file's other columns, then the predictions T_x,T_y,M_z,M_roll,N (suffixed _model where the
-// input already has such a column), with M_tilt after M_roll when the model shows it. Returns the
-// rows written.
+// input already has such a column), with M_tilt after M_roll when the model shows it. The rows
+// run on up to r.threads threads, the file is the same on any number. Returns the rows written.
 std::size_t evaluate_file(const EvalRequest& r);
 
 // Kinematics columns of one length: v_x, v_y, omega finite; N and R finite and > 0.
@@ -37,7 +37,8 @@ struct ResultantColumns {
   std::vector<double> T_x, T_y, M_z, M_roll, M_tilt, N;
 };
 
-// Throws InputError naming the column and the index of the first bad value.
-ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& k);
+// Throws InputError naming the column and the index of the first bad value. The rows run on up
+// to `threads` threads (0: every hardware thread); the values do not depend on how many.
+ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& k, int threads = 0);
 
 }  // namespace frictionid::app

@@ -205,7 +205,7 @@ FitSettings fit_settings(const FitRequest& o, const std::string& model, bool len
   s.global_algorithm = o.global_algorithm;
   s.global_evaluations = o.global_evaluations;
   s.global_subsample = o.global_subsample;
-  if (o.threads < 0) throw InputError("--threads must be 0 (every hardware thread) or more");
+  check_thread_option(o.threads);
   s.threads = o.threads;
 
   return s;

@@ -5,6 +5,7 @@
 
 #include <frictionid/io/dataset_writer.hpp>
 #include <frictionid/io/input_error.hpp>
+#include "app/option_parsers.hpp"
 #include "io/atomic_file.hpp"
 
 namespace frictionid::app {
@@ -16,6 +17,7 @@ GeneratedData generate(const GenerateRequest& r) {
     throw InputError("--rows", 0, 0,
                      "got '" + std::to_string(r.rows) + "'; expected a whole number from 1 to " +
                          std::to_string(kMaxGeneratedRows));
+  check_thread_option(r.threads);
   if (!(r.noise >= 0.0) || !(r.noise_abs >= 0.0) || !std::isfinite(r.noise) ||
       !std::isfinite(r.noise_abs))
     throw InputError("--noise and --noise-abs must be finite and >= 0");
@@ -47,7 +49,7 @@ GeneratedData generate(const GenerateRequest& r) {
   const NoiseSpec noise{r.noise, r.noise_abs, r.sigma_columns};
   // An M_tilt column only where the model shows it (shows_tilt): a circle's file stays as it was.
   g.data = generate_dataset(g.setup.kind, g.setup.law, g.setup.params, d, noise, r.seed,
-                            g.setup.contact);
+                            g.setup.contact, r.threads);
   g.data.source = r.output;
   return g;
 }

@@ -139,6 +139,10 @@ std::uint64_t parse_whole_number(const std::string& option, const std::string& t
   return value;
 }
 
+void check_thread_option(int threads) {
+  if (threads < 0) throw InputError("--threads must be 0 (every hardware thread) or more");
+}
+
 std::map<std::string, double> parse_assignments(const std::string& option,
                                                 const std::string& spec) {
   static const char* const kExpected = "name=value[,name=value...], e.g. f=0.8,kappa=1.2";

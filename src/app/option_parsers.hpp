@@ -16,6 +16,9 @@
 
 namespace frictionid {
 
+// --threads: 0 (every hardware thread) or more; an InputError naming the option otherwise.
+void check_thread_option(int threads);
+
 // "f=0.8,kappa=1.2" -> {f: 0.8, kappa: 1.2}. For --param and --fix.
 std::map<std::string, double> parse_assignments(const std::string& option, const std::string& spec);
 

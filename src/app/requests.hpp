@@ -46,6 +46,7 @@ struct EvalRequest {
   double N = 1.0, R = 1.0;
   std::string input, output;  // every row of a kinematics CSV, predictions appended
   ColumnMap columns;
+  int threads = 0;  // for the rows (0: every hardware thread); the output does not depend on it
 };
 
 struct GenerateRequest {
@@ -61,6 +62,7 @@ struct GenerateRequest {
   double R = 0.05, spin = 2.0;
   std::vector<double> slip_angles_deg = {0.0};
   bool forward_only = false;
+  int threads = 0;  // for the rows (0: every hardware thread); the data do not depend on it
 };
 
 struct FitRequest {

@@ -110,6 +110,10 @@ void add_eval(CLI::App& app, EvalRequest& o, Texts& t) {
   c->add_option("--output", o.output,
                 std::string("CSV to write: the input columns plus the predictions") + kOutputNote);
   c->add_option("--columns", t.eval_columns, "rename columns: canonical=header,...");
+  c->add_option("--threads", o.threads,
+                "threads for the rows (0: every hardware thread); the output does not depend on "
+                "it")
+      ->capture_default_str();
 }
 
 void add_generate(CLI::App& app, GenerateRequest& o, Texts& t) {
@@ -136,6 +140,9 @@ void add_generate(CLI::App& app, GenerateRequest& o, Texts& t) {
   c->add_option("--slip-angles", t.slip_angles, "slip directions [deg], comma separated")
       ->capture_default_str();
   c->add_flag("--forward-only", o.forward_only, "no rows with backward slip (v_x < 0)");
+  c->add_option("--threads", o.threads,
+                "threads for the rows (0: every hardware thread); the data do not depend on it")
+      ->capture_default_str();
 }
 
 // The options fit, compare and batch share (batch takes its own inputs instead of `data`).

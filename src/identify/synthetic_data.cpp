@@ -1,8 +1,12 @@
 #include <frictionid/synthetic_data.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <vector>
+
+#include "identify/row_predictions.hpp"
 
 namespace frictionid {
 
@@ -41,7 +45,7 @@ double NormalStream::next() {
 Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
                          const std::array<double, kParamCount>& params,
                          const SyntheticDesign& design, const NoiseSpec& noise, std::uint64_t seed,
-                         const model::ContactSpot& contact) {
+                         const model::ContactSpot& contact, int threads) {
   if (design.rows == 0) throw std::invalid_argument("the design has no rows");
   if (!(design.eps_min > 0.0) || !(design.eps_max >= design.eps_min))
     throw std::invalid_argument("the eps range must satisfy 0 < eps_min <= eps_max");
@@ -50,15 +54,12 @@ Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
   const ModelEvaluator<double> model(
       kind, law, params.data(),
       ring_table_for_rows(kind, law, params[kN], false, design.rows, contact), nullptr,
-      spot_for_rows(kind, law, params[kQ], params[kN], design.rows, contact));
+      spot_for_rows(kind, law, params[kQ], params[kN], design.rows, contact, threads));
   const int channels =
       contact.kind != model::SpotKind::Circle || params[kHy] != 0.0 ? kChannelCount : 4;
-  NormalStream normal(seed);
-  Dataset d;
-  d.source = "generated";
   const std::size_t n = design.rows;
   const double log_lo = std::log(design.eps_min), log_hi = std::log(design.eps_max);
-  for (std::size_t i = 0; i < n; ++i) {
+  const auto row = [&](std::size_t i) {
     // A golden-ratio sequence spreads eps evenly in log scale whatever the row count, and
     // interleaves loads, spin signs and slip angles so that any subsample sees them all.
     const double u =
@@ -69,22 +70,37 @@ Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
     const double alpha = design.slip_angles[(i / 2) % design.slip_angles.size()];
     double v = eps * design.spin * design.contact_radius;
     if (design.negative_slip && i % 4 == 3) v = -v;
-    const model::Kinematics k{v * std::cos(alpha), v * std::sin(alpha), omega, load,
-                              design.contact_radius};
-    const auto r = model(k);
-    d.line.push_back(i + 2);
-    d.v_x.push_back(k.v_x);
-    d.v_y.push_back(k.v_y);
-    d.omega.push_back(k.omega);
-    d.N.push_back(k.N);
-    d.R.push_back(k.R);
-    const double clean[kChannelCount] = {r.T_x, r.T_y, r.M_z, r.M_roll, r.M_tilt};
-    for (int c = 0; c < channels; ++c) {
-      const double sd = std::hypot(noise.relative * clean[c], noise.absolute);
-      const double z = normal.next();
-      d.value[c].push_back(clean[c] + sd * z);
-      d.present[c].push_back(1);
-      if (noise.write_sigma) d.sigma[c].push_back(sd > 0.0 ? sd : 1e-300);
+    return model::Kinematics{v * std::cos(alpha), v * std::sin(alpha), omega, load,
+                             design.contact_radius};
+  };
+  NormalStream normal(seed);
+  Dataset d;
+  d.source = "generated";
+  // A block of rows through the model on every thread, then its noise in row order: the same
+  // numbers on any number of threads, and memory for one block's predictions only.
+  constexpr std::size_t kBlock = 65536;
+  for (std::size_t first = 0; first < n; first += kBlock) {
+    const std::size_t count = std::min(kBlock, n - first);
+    const std::vector<model::Resultants<double>> predicted = predict_rows(
+        model, count, [&row, first](std::size_t i) { return row(first + i); }, threads);
+    for (std::size_t b = 0; b < count; ++b) {
+      const std::size_t i = first + b;
+      const model::Kinematics k = row(i);
+      const model::Resultants<double>& r = predicted[b];
+      d.line.push_back(i + 2);
+      d.v_x.push_back(k.v_x);
+      d.v_y.push_back(k.v_y);
+      d.omega.push_back(k.omega);
+      d.N.push_back(k.N);
+      d.R.push_back(k.R);
+      const double clean[kChannelCount] = {r.T_x, r.T_y, r.M_z, r.M_roll, r.M_tilt};
+      for (int c = 0; c < channels; ++c) {
+        const double sd = std::hypot(noise.relative * clean[c], noise.absolute);
+        const double z = normal.next();
+        d.value[c].push_back(clean[c] + sd * z);
+        d.present[c].push_back(1);
+        if (noise.write_sigma) d.sigma[c].push_back(sd > 0.0 ? sd : 1e-300);
+      }
     }
   }
   return d;

@@ -21,7 +21,8 @@ namespace {
 py::dict evaluate(const std::string& model, const std::string& pressure,
                   const app::ParameterValues& params, const DoubleArray& v_x,
                   const DoubleArray& v_y, const DoubleArray& omega, const DoubleArray& N,
-                  const DoubleArray& R, const std::string& contact, bool pressure_given) {
+                  const DoubleArray& R, const std::string& contact, bool pressure_given,
+                  int threads) {
   const app::ModelSetup s =
       app::make_model_setup({model, pressure, params, contact, pressure_given});
   const std::size_t rows = static_cast<std::size_t>(v_x.size());
@@ -34,8 +35,8 @@ py::dict evaluate(const std::string& model, const std::string& pressure,
   app::ResultantColumns out;
   {
     py::gil_scoped_release release;
-    out =
-        app::evaluate_columns(s, {v_x.data(), v_y.data(), omega.data(), N.data(), R.data(), rows});
+    out = app::evaluate_columns(s, {v_x.data(), v_y.data(), omega.data(), N.data(), R.data(), rows},
+                                threads);
   }
   py::dict d;
   d["T_x"] = to_numpy(out.T_x);
@@ -52,7 +53,7 @@ py::dict evaluate(const std::string& model, const std::string& pressure,
 void register_evaluate(py::module_& m) {
   m.def("evaluate", &evaluate, py::arg("model"), py::arg("pressure"), py::arg("params"),
         py::arg("v_x"), py::arg("v_y"), py::arg("omega"), py::arg("N"), py::arg("R"),
-        py::arg("contact") = "circle", py::arg("pressure_given") = true);
+        py::arg("contact") = "circle", py::arg("pressure_given") = true, py::arg("threads") = 0);
   m.def(
       "coefficients",
       [](const std::string& pressure, double kappa, double alpha, const std::string& contact,

@@ -18,7 +18,7 @@ py::dict generate(const std::string& model, const std::string& pressure,
                   double noise_abs, bool sigma_columns, unsigned long long seed, double eps_min,
                   double eps_max, const std::vector<double>& loads, double R, double spin,
                   const std::vector<double>& slip_angles_deg, bool forward_only,
-                  const std::string& contact, bool pressure_given) {
+                  const std::string& contact, bool pressure_given, int threads) {
   app::GenerateRequest r;
   r.model = {model, pressure, params, contact, pressure_given};
   r.rows = rows;
@@ -33,6 +33,7 @@ py::dict generate(const std::string& model, const std::string& pressure,
   r.spin = spin;
   r.slip_angles_deg = slip_angles_deg;
   r.forward_only = forward_only;
+  r.threads = threads;
   app::GeneratedData g;
   {
     py::gil_scoped_release release;
@@ -51,7 +52,7 @@ void register_generate(py::module_& m) {
         py::arg("rows"), py::arg("noise"), py::arg("noise_abs"), py::arg("sigma_columns"),
         py::arg("seed"), py::arg("eps_min"), py::arg("eps_max"), py::arg("loads"), py::arg("R"),
         py::arg("spin"), py::arg("slip_angles_deg"), py::arg("forward_only"),
-        py::arg("contact") = "circle", py::arg("pressure_given") = true);
+        py::arg("contact") = "circle", py::arg("pressure_given") = true, py::arg("threads") = 0);
 }
 
 }  // namespace frictionid::python

@@ -287,6 +287,28 @@ TEST(ContactSpotCli, AFitOnAMapShowsItsRowsIntegralsOnTheProgressLine) {
             without_traceability(read_file(dir.path() / "quiet" / "report.json")));
 }
 
+TEST(ContactSpotCli, EvalAndGenerateOnAMapWriteTheSameBytesOnOneAndTwoThreads) {
+  const ScratchDir dir("contact_" + test_name());
+  const std::string model =
+      " --model exact --contact map:" + kFootprint + " --param f=0.8,kappa=1.1,h=0.05,h_y=0.03 ";
+  for (const char* threads : {"1", "2"}) {
+    const std::string t = threads;
+    const std::string design = "--rows 200 --noise 0.01 --slip-angles 0,7,-4 --threads " + t;
+    ASSERT_EQ(
+        run_frictionid("generate" + model + design + " --output " + (dir / ("g" + t + ".csv")))
+            .code,
+        0);
+    ASSERT_EQ(run_frictionid("eval" + model + "--threads " + t + " --input " + (dir / "g1.csv") +
+                             " --output " + (dir / ("e" + t + ".csv")))
+                  .code,
+              0);
+  }
+  EXPECT_EQ(read_file(dir / "g1.csv"), read_file(dir / "g2.csv"));
+  const std::string one = read_file(dir / "e1.csv");
+  EXPECT_EQ(one, read_file(dir / "e2.csv"));
+  EXPECT_EQ(lines_of(one), 201u);
+}
+
 TEST(ContactSpotCli, CoefficientsOfASpotAreItsSlopeMatchedOnes) {
   const CommandResult j = run_frictionid("coefficients --contact ellipse:0.6 --kappa 1.2");
   ASSERT_EQ(j.code, 0) << j.out;

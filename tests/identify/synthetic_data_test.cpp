@@ -60,5 +60,51 @@ TEST(SyntheticData, DesignSpansTheRequestedEpsRangeWithBothSpinSignsAndBackwardS
   EXPECT_GT(neg_v, 0);
 }
 
+TEST(SyntheticData, TheRowsDoNotDependOnTheThreads) {
+  // A rectangle with a lateral tilt: every row integrated by itself, M_tilt among the channels.
+  const auto law = model::PressureLaw<double>::parabolic();
+  std::array<double, kParamCount> p = default_parameters(law, 0.9, 1.1, 0.05);
+  p[kHy] = 0.04;
+  p[kQ] = 0.7;
+  SyntheticDesign design;
+  design.rows = 120;
+  design.slip_angles = {0.0, 0.2, -0.3};
+  const NoiseSpec noise{0.01, 1e-3, true};
+  const model::ContactSpot spot = model::ContactSpot::rect(0.7);
+  const Dataset one = generate_dataset(ModelKind::Exact, law, p, design, noise, 5, spot, 1);
+  for (int threads : {2, 3, 0}) {
+    const Dataset d = generate_dataset(ModelKind::Exact, law, p, design, noise, 5, spot, threads);
+    for (int c = 0; c < kChannelCount; ++c) {
+      EXPECT_EQ(d.value[c], one.value[c]) << "channel " << c << ", threads " << threads;
+      EXPECT_EQ(d.sigma[c], one.sigma[c]) << "channel " << c << ", threads " << threads;
+    }
+  }
+  EXPECT_EQ(one.value[kChannelCount - 1].size(), design.rows);  // M_tilt was generated
+}
+
+TEST(SyntheticData, NoiseFollowsRowOrderAcrossTheBlocksOfPredictions) {
+  // 70,000 rows run through the model in blocks of 65,536: each value is still the model's
+  // plus its sigma times the next deviates of one stream, in row order, channel by channel.
+  const auto law = model::PressureLaw<double>::hertz();
+  const auto p = default_parameters(law, 0.9, 1.1, 0.05);
+  SyntheticDesign design;
+  design.rows = 70000;
+  const NoiseSpec noise{0.01, 0.0, false};
+  const Dataset clean = generate_dataset(ModelKind::Seed, law, p, design, NoiseSpec{}, 9, {}, 2);
+  const Dataset noisy = generate_dataset(ModelKind::Seed, law, p, design, noise, 9, {}, 2);
+  const ModelEvaluator<double> model(ModelKind::Seed, law, p.data());
+  NormalStream normal(9);
+  for (std::size_t i = 0; i < design.rows; ++i) {
+    const auto r = model({clean.v_x[i], clean.v_y[i], clean.omega[i], clean.N[i], clean.R[i]});
+    const double want[] = {r.T_x, r.T_y, r.M_z, r.M_roll};
+    for (int c = 0; c < 4; ++c) {
+      const double z = normal.next();
+      ASSERT_EQ(clean.value[c][i], want[c]) << "row " << i << ", channel " << c;
+      ASSERT_EQ(noisy.value[c][i], want[c] + std::fabs(0.01 * want[c]) * z)
+          << "row " << i << ", channel " << c;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace frictionid::synthetic_data_test

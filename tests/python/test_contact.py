@@ -104,6 +104,28 @@ def test_generate_on_a_spot_writes_m_tilt_as_the_command_line(run_cli, tmp_path)
     assert circle.attrs["contact"] == "circle"
 
 
+def test_evaluate_and_generate_give_the_same_numbers_on_any_threads(footprint):
+    rng = np.random.default_rng(3)
+    v_x, v_y = rng.normal(0.0, 0.2, 200), rng.normal(0.0, 0.05, 200)
+    omega = np.where(np.arange(200) % 2 == 0, 2.0, -2.0)
+    params = {"f": 0.8, "kappa": 1.1, "h": 0.05, "h_y": 0.03}
+    spot = f"map:{footprint}"
+    one = frictionid.evaluate("exact", None, params, v_x, v_y, omega, 3000.0, 0.05,
+                              contact=spot, threads=1)
+    two = frictionid.evaluate("exact", None, params, v_x, v_y, omega, 3000.0, 0.05,
+                              contact=spot, threads=2)
+    assert one.keys() == two.keys()
+    for k in one:
+        np.testing.assert_array_equal(one[k], two[k])
+    kw = dict(contact="rect:0.6", rows=150, noise=0.01, slip_angles_deg=[0.0, 6.0])
+    pd.testing.assert_frame_equal(frictionid.generate("exact", "hertz", params, threads=1, **kw),
+                                  frictionid.generate("exact", "hertz", params, threads=2, **kw),
+                                  check_exact=True)
+    with pytest.raises(frictionid.InputError, match="--threads must be 0"):
+        frictionid.evaluate("exact", None, params, 0.1, 0.0, 1.0, 1.0, 1.0, contact=spot,
+                            threads=-1)
+
+
 def test_coefficients_and_simulate_take_a_contact(run_cli, footprint):
     py = frictionid.coefficients(kappa=1.2, contact="ellipse:0.6")
     cli = json.loads(run_cli("coefficients", "--kappa", "1.2", "--contact",

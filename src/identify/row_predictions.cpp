@@ -1,0 +1,39 @@
+#include "identify/row_predictions.hpp"
+
+#include <algorithm>
+#include <exception>
+
+#include "identify/row_chunks.hpp"
+
+namespace frictionid {
+
+namespace {
+
+// Rows a thread takes at a time: small enough that 64 rows already keep two threads busy, large
+// enough that taking them costs nothing beside a row (~1 us on the circle).
+constexpr std::size_t kPredictionRows = 16;
+
+}  // namespace
+
+std::vector<model::Resultants<double>> predict_rows(
+    const ModelEvaluator<double>& model, std::size_t rows,
+    const std::function<model::Kinematics(std::size_t)>& kinematics, int threads) {
+  std::vector<model::Resultants<double>> out(rows);
+  const std::size_t parts = (rows + kPredictionRows - 1) / kPredictionRows;
+  // A row that throws ends its part; the first such row's error is rethrown, whichever thread
+  // met it first, so that the message does not depend on the threads either.
+  std::vector<std::exception_ptr> errors(parts);
+  for_each_chunk(parts, resolve_thread_count(threads), [&](std::size_t part) {
+    const std::size_t end = std::min(rows, (part + 1) * kPredictionRows);
+    try {
+      for (std::size_t i = part * kPredictionRows; i < end; ++i) out[i] = model(kinematics(i));
+    } catch (...) {
+      errors[part] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+  return out;
+}
+
+}  // namespace frictionid
