@@ -635,6 +635,38 @@ TEST(SpotIntegralTable, ABuildThrowsBeforeItWouldExceedItsBudgetAndWithinItIsThe
   }
 }
 
+// The same on a map, where a first round beyond the budget is seen from the root cells alone,
+// before the near cells are set up and any point is queued: a budget of one point computes none.
+TEST(SpotIntegralTable, AMapsBuildThrowsBeforeItWouldExceedItsBudgetFirstRoundIncluded) {
+  auto map = std::make_shared<PressureMap>();
+  map->x = {-1.0, 0.2, 1.0};
+  map->y = {-0.5, 0.5};
+  map->sigma0 = {1.0, 0.5, 0.8, 1.2, 0.0, 0.7};
+  const ContactSpot spot = ContactSpot::pressure_map(map);
+  const PressureLaw<double> law = PressureLaw<double>::uniform();
+  std::atomic<std::size_t> asked{0};
+  const auto count = [&asked] {
+    ++asked;
+    return false;
+  };
+  const SpotIntegralTable full(spot, law, 1.0, {}, 2);
+  const std::size_t points = full.stats().points;
+  for (std::size_t budget : {std::size_t{1}, std::size_t{100}}) {
+    asked = 0;
+    EXPECT_THROW(SpotIntegralTable(spot, law, 1.0, count, 2, budget), SpotTableOverBudget);
+    EXPECT_EQ(asked.load(), 0u) << budget;
+  }
+  asked = 0;
+  EXPECT_THROW(SpotIntegralTable(spot, law, 1.0, count, 2, points - 1), SpotTableOverBudget);
+  EXPECT_LT(asked.load(), points - 1);
+  const SpotIntegralTable exact(spot, law, 1.0, {}, 2, points);
+  EXPECT_EQ(exact.stats().points, points);
+  for (const auto& c : std::vector<std::array<double, 2>>{{0.1, 0.2}, {-0.7, 0.45}, {3.0, -2.0}}) {
+    const auto a = channels(full(c[0], c[1])), b = channels(exact(c[0], c[1]));
+    for (std::size_t k = 0; k < 12; ++k) EXPECT_EQ(a[k], b[k]);
+  }
+}
+
 TEST(SpotIntegralTable, ItServesOnlyItsSpotAspectAndLaw) {
   const SpotIntegralTable table(ContactSpot::ellipse(0.8), PressureLaw<double>::annulus(0.5), 0.8);
   EXPECT_TRUE(table.matches(ContactSpot::ellipse(0.8), 0.8, PressureLaw<double>::annulus(0.5)));
