@@ -40,7 +40,8 @@ def evaluate(
         v_x, v_y, omega: slip velocity [m/s] and spin [rad/s], finite.
         N, R: normal load [N] and contact radius [m], finite and > 0.
         contact: the contact spot, as for :func:`fit` (``--contact``).
-        threads: threads for the rows (0: every core); the values do not depend on it.
+        threads: threads for the rows (0: every core; 1 in a Dask task on a one-thread worker);
+            the values do not depend on it.
 
     Returns:
         ``{"T_x", "T_y", "M_z", "M_roll", "N"}`` -> float64 arrays of the broadcast shape, and
@@ -117,7 +118,8 @@ def generate(
         loads: normal loads [N], cycled; R: contact radius [m]; spin: |omega| [rad/s].
         slip_angles_deg: slip directions [degrees], cycled.
         forward_only: no backward-slipping rows (else every 4th row has v_x < 0).
-        threads: threads for the model's rows (0: every core); the data do not depend on it.
+        threads: threads for the model's rows (0: every core, as for :func:`evaluate`); the data
+            do not depend on it.
 
     Returns:
         A pandas DataFrame with the canonical columns (``M_tilt`` too on a spot other than the

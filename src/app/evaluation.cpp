@@ -47,12 +47,13 @@ std::size_t evaluate_file(const EvalRequest& r) {
       s.kind, s.law, s.params.data(),
       ring_table_for_rows(s.kind, s.law, s.params[kN], false, d.rows(), s.contact), nullptr,
       spot_for_rows(s.kind, s.law, s.params[kQ], s.params[kN], d.rows(), s.contact, r.threads));
-  const std::vector<model::Resultants<double>> values = predict_rows(
+  std::vector<model::Resultants<double>> values(d.rows());
+  predict_rows(
       eval, d.rows(),
       [&d](std::size_t i) {
         return model::Kinematics{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i], d.tilt_sign_at(i)};
       },
-      r.threads);
+      [&values](std::size_t i, const model::Resultants<double>& p) { values[i] = p; }, r.threads);
   const bool tilt = shows_tilt(s);
   std::string text = dataset_csv_text(d);
   const std::size_t header_end = text.find('\n');
@@ -102,21 +103,20 @@ ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& 
       s.kind, s.law, s.params.data(),
       ring_table_for_rows(s.kind, s.law, s.params[kN], false, k.rows, s.contact), nullptr,
       spot_for_rows(s.kind, s.law, s.params[kQ], s.params[kN], k.rows, s.contact, threads));
-  const std::vector<model::Resultants<double>> predicted = predict_rows(
+  predict_rows(
       eval, k.rows,
       [&k](std::size_t i) {
         return model::Kinematics{k.v_x[i], k.v_y[i], k.omega[i], k.N[i], k.R[i]};
       },
+      [&out](std::size_t i, const model::Resultants<double>& p) {
+        out.T_x[i] = p.T_x;
+        out.T_y[i] = p.T_y;
+        out.M_z[i] = p.M_z;
+        out.M_roll[i] = p.M_roll;
+        out.M_tilt[i] = p.M_tilt;
+        out.N[i] = p.N;
+      },
       threads);
-  for (std::size_t i = 0; i < k.rows; ++i) {
-    const model::Resultants<double>& p = predicted[i];
-    out.T_x[i] = p.T_x;
-    out.T_y[i] = p.T_y;
-    out.M_z[i] = p.M_z;
-    out.M_roll[i] = p.M_roll;
-    out.M_tilt[i] = p.M_tilt;
-    out.N[i] = p.N;
-  }
   return out;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <vector>
 
 #include "identify/row_chunks.hpp"
 
@@ -15,25 +16,23 @@ constexpr std::size_t kPredictionRows = 16;
 
 }  // namespace
 
-std::vector<model::Resultants<double>> predict_rows(
-    const ModelEvaluator<double>& model, std::size_t rows,
-    const std::function<model::Kinematics(std::size_t)>& kinematics, int threads) {
-  std::vector<model::Resultants<double>> out(rows);
+void predict_rows(const ModelEvaluator<double>& model, std::size_t rows,
+                  const std::function<model::Kinematics(std::size_t)>& kinematics,
+                  const std::function<void(std::size_t, const model::Resultants<double>&)>& store,
+                  int threads) {
   const std::size_t parts = (rows + kPredictionRows - 1) / kPredictionRows;
-  // A row that throws ends its part; the first such row's error is rethrown, whichever thread
-  // met it first, so that the message does not depend on the threads either.
+  // The first failing row's error, so that the message does not depend on the threads either.
   std::vector<std::exception_ptr> errors(parts);
   for_each_chunk(parts, resolve_thread_count(threads), [&](std::size_t part) {
     const std::size_t end = std::min(rows, (part + 1) * kPredictionRows);
     try {
-      for (std::size_t i = part * kPredictionRows; i < end; ++i) out[i] = model(kinematics(i));
+      for (std::size_t i = part * kPredictionRows; i < end; ++i) store(i, model(kinematics(i)));
     } catch (...) {
       errors[part] = std::current_exception();
     }
   });
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);
-  return out;
 }
 
 }  // namespace frictionid

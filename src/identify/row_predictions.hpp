@@ -4,18 +4,21 @@
 
 #include <cstddef>
 #include <functional>
-#include <vector>
 
 #include <frictionid/model/kinematics.hpp>
 #include <frictionid/model_variant.hpp>
 
 namespace frictionid {
 
-// model(kinematics(i)) for every i in [0, rows), on up to `threads` threads (0: every hardware
-// thread; fewer when the calling thread's budget has fewer, thread_budget.hpp). A row of a
-// non-circular spot integrated by itself costs 6-400 us, so the rows go out a few at a time.
-std::vector<model::Resultants<double>> predict_rows(
-    const ModelEvaluator<double>& model, std::size_t rows,
-    const std::function<model::Kinematics(std::size_t)>& kinematics, int threads);
+// store(i, model(kinematics(i))) for every i in [0, rows), on up to `threads` threads (0: every
+// hardware thread; fewer when the calling thread's budget has fewer, thread_budget.hpp). store is
+// called from those threads, once per row: it must write only row i's own slots. A row of a
+// non-circular spot integrated by itself costs 6-600 us, so the rows go out a few at a time. A row
+// that throws ends its part, and the first such row's error is rethrown, whichever thread met
+// another first.
+void predict_rows(const ModelEvaluator<double>& model, std::size_t rows,
+                  const std::function<model::Kinematics(std::size_t)>& kinematics,
+                  const std::function<void(std::size_t, const model::Resultants<double>&)>& store,
+                  int threads);
 
 }  // namespace frictionid

@@ -79,10 +79,13 @@ Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
   // A block of rows through the model on every thread, then its noise in row order: the same
   // numbers on any number of threads, and memory for one block's predictions only.
   constexpr std::size_t kBlock = 65536;
+  std::vector<model::Resultants<double>> predicted(std::min(kBlock, n));
   for (std::size_t first = 0; first < n; first += kBlock) {
     const std::size_t count = std::min(kBlock, n - first);
-    const std::vector<model::Resultants<double>> predicted = predict_rows(
-        model, count, [&row, first](std::size_t i) { return row(first + i); }, threads);
+    predict_rows(
+        model, count, [&row, first](std::size_t i) { return row(first + i); },
+        [&predicted](std::size_t i, const model::Resultants<double>& r) { predicted[i] = r; },
+        threads);
     for (std::size_t b = 0; b < count; ++b) {
       const std::size_t i = first + b;
       const model::Kinematics k = row(i);
