@@ -9,17 +9,18 @@ namespace frictionid {
 
 // Before the search, the exact model on a non-circular spot computes its rows' integrals once
 // (docs/physics.md §9.7): ContactTable while it attempts a table of them, ContactRows while it
-// integrates or reads the rows.
-enum class FitStage { GlobalSearch, LocalFit, ContactTable, ContactRows };
+// integrates or reads the rows. eval and generate report the same ContactTable, then ModelRows
+// while the model runs over their rows.
+enum class FitStage { GlobalSearch, LocalFit, ContactTable, ContactRows, ModelRows };
 
 struct FitProgress {
   FitStage stage = FitStage::GlobalSearch;
   // global search: evaluations so far; local fit: iterations so far; contact table: its points
-  // so far; contact rows: rows done
+  // so far; contact rows, model rows: rows done
   long done = 0;
   // global search: the evaluation budget; local fit: the iteration limit; contact table: its
   // budget of points (the build is abandoned, and the rows integrated, before it would exceed
-  // it); contact rows: the rows
+  // it); contact rows, model rows: the rows
   long total = 0;
   int start = 0;      // local fit: which start (1-based), of `starts`
   int starts = 0;     // local fits in this run (the last one may refine on all rows)

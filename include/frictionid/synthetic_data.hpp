@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <frictionid/dataset.hpp>
+#include <frictionid/fit_observer.hpp>
 #include <frictionid/model_variant.hpp>
 
 namespace frictionid {
@@ -30,11 +31,13 @@ struct NoiseSpec {
 // Rows in a fixed, interleaved order; channels T_x, T_y, M_z, M_roll all present, and M_tilt
 // when the spot is not a circle or h_y is not 0 (a circle's file stays as it always was). The
 // model runs on up to `threads` threads (0: every hardware thread); the dataset does not depend
-// on how many.
+// on how many. The observer (may be null) hears a spot's table build (FitStage::ContactTable) and
+// the rows (FitStage::ModelRows), and may cancel them (FitError("interrupted")).
 Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
                          const std::array<double, kParamCount>& params,
                          const SyntheticDesign& design, const NoiseSpec& noise, std::uint64_t seed,
-                         const model::ContactSpot& contact = {}, int threads = 0);
+                         const model::ContactSpot& contact = {}, int threads = 0,
+                         FitObserver* observer = nullptr);
 
 // Standard normal deviates, platform-independent (Marsaglia polar method on mt19937_64).
 class NormalStream {

@@ -11,6 +11,7 @@
 #include <frictionid/io/input_error.hpp>
 #include "app/option_parsers.hpp"
 #include "identify/row_predictions.hpp"
+#include "identify/table_progress_check.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv_cell.hpp"
 
@@ -36,7 +37,7 @@ nlohmann::ordered_json evaluate_point(const EvalRequest& r) {
   return j;
 }
 
-std::size_t evaluate_file(const EvalRequest& r) {
+std::size_t evaluate_file(const EvalRequest& r, FitObserver* observer) {
   const ModelSetup s = make_model_setup(r.model);
   if (r.output.empty()) throw InputError("eval --input needs --output FILE");
   if (r.vx || r.vy || r.omega)
@@ -46,14 +47,16 @@ std::size_t evaluate_file(const EvalRequest& r) {
   const ModelEvaluator<double> eval(
       s.kind, s.law, s.params.data(),
       ring_table_for_rows(s.kind, s.law, s.params[kN], false, d.rows(), s.contact), nullptr,
-      spot_for_rows(s.kind, s.law, s.params[kQ], s.params[kN], d.rows(), s.contact, r.threads));
+      observed_spot_for_rows(s.kind, s.law, s.params[kQ], s.params[kN], d.rows(), s.contact,
+                             r.threads, observer));
   std::vector<model::Resultants<double>> values(d.rows());
   predict_rows(
       eval, d.rows(),
       [&d](std::size_t i) {
         return model::Kinematics{d.v_x[i], d.v_y[i], d.omega[i], d.N[i], d.R[i], d.tilt_sign_at(i)};
       },
-      [&values](std::size_t i, const model::Resultants<double>& p) { values[i] = p; }, r.threads);
+      [&values](std::size_t i, const model::Resultants<double>& p) { values[i] = p; }, r.threads,
+      observer);
   const bool tilt = shows_tilt(s);
   std::string text = dataset_csv_text(d);
   const std::size_t header_end = text.find('\n');

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <frictionid/fit_observer.hpp>
+
 #include "app/model_setup.hpp"
 #include "app/requests.hpp"
 
@@ -21,7 +23,9 @@ nlohmann::ordered_json evaluate_point(const EvalRequest& r);
 // the file's other columns, then the predictions T_x,T_y,M_z,M_roll,N (suffixed _model where the
 // input already has such a column), with M_tilt after M_roll when the model shows it. The rows
 // run on up to r.threads threads, the file is the same on any number. Returns the rows written.
-std::size_t evaluate_file(const EvalRequest& r);
+// The observer (may be null) hears a spot's table build and the model's rows and may cancel them
+// (FitError("interrupted"); nothing is written then).
+std::size_t evaluate_file(const EvalRequest& r, FitObserver* observer = nullptr);
 
 // Kinematics columns of one length: v_x, v_y, omega finite; N and R finite and > 0.
 struct KinematicsColumns {

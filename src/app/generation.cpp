@@ -10,7 +10,7 @@
 
 namespace frictionid::app {
 
-GeneratedData generate(const GenerateRequest& r) {
+GeneratedData generate(const GenerateRequest& r, FitObserver* observer) {
   GeneratedData g;
   g.setup = make_model_setup(r.model);
   if (r.rows < 1 || r.rows > kMaxGeneratedRows)
@@ -49,7 +49,7 @@ GeneratedData generate(const GenerateRequest& r) {
   const NoiseSpec noise{r.noise, r.noise_abs, r.sigma_columns};
   // An M_tilt column only where the model shows it (shows_tilt): a circle's file stays as it was.
   g.data = generate_dataset(g.setup.kind, g.setup.law, g.setup.params, d, noise, r.seed,
-                            g.setup.contact, r.threads);
+                            g.setup.contact, r.threads, observer);
   g.data.source = r.output;
   return g;
 }

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <frictionid/dataset.hpp>
+#include <frictionid/fit_observer.hpp>
 #include <frictionid/synthetic_data.hpp>
 #include "app/model_setup.hpp"
 #include "app/requests.hpp"
@@ -22,8 +23,10 @@ struct GeneratedData {
   Dataset data;
 };
 
-// Checks the request and makes the rows. Throws InputError naming the option.
-GeneratedData generate(const GenerateRequest& r);
+// Checks the request and makes the rows. Throws InputError naming the option. The observer (may
+// be null) hears a spot's table build and the model's rows and may cancel them
+// (FitError("interrupted"), generate_dataset).
+GeneratedData generate(const GenerateRequest& r, FitObserver* observer = nullptr);
 
 // The truth file's JSON: the model and its parameters, the noise, the seed and the design.
 nlohmann::ordered_json truth_json(const GenerateRequest& r, const GeneratedData& g);

@@ -47,6 +47,7 @@ struct EvalRequest {
   std::string input, output;  // every row of a kinematics CSV, predictions appended
   ColumnMap columns;
   int threads = 0;  // for the rows (0: every hardware thread); the output does not depend on it
+  bool progress = false;  // progress line on stderr (the command line sets it on a tty)
 };
 
 struct GenerateRequest {
@@ -62,7 +63,8 @@ struct GenerateRequest {
   double R = 0.05, spin = 2.0;
   std::vector<double> slip_angles_deg = {0.0};
   bool forward_only = false;
-  int threads = 0;  // for the rows (0: every hardware thread); the data do not depend on it
+  int threads = 0;        // for the rows (0: every hardware thread); the data do not depend on it
+  bool progress = false;  // progress line on stderr (the command line sets it on a tty)
 };
 
 struct FitRequest {

@@ -114,6 +114,8 @@ void add_eval(CLI::App& app, EvalRequest& o, Texts& t) {
                 "threads for the rows (0: every hardware thread); the output does not depend on "
                 "it")
       ->capture_default_str();
+  c->add_flag("--progress", o.progress,
+              "progress line on stderr for --input (default: when it is a terminal)");
 }
 
 void add_generate(CLI::App& app, GenerateRequest& o, Texts& t) {
@@ -143,6 +145,7 @@ void add_generate(CLI::App& app, GenerateRequest& o, Texts& t) {
   c->add_option("--threads", o.threads,
                 "threads for the rows (0: every hardware thread); the data do not depend on it")
       ->capture_default_str();
+  c->add_flag("--progress", o.progress, "progress line on stderr (default: when it is a terminal)");
 }
 
 // The options fit, compare and batch share (batch takes its own inputs instead of `data`).

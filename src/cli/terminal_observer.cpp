@@ -34,6 +34,9 @@ void TerminalObserver::on_progress(const FitProgress& p) {
     case FitStage::ContactRows:
       std::fprintf(stderr, "\rfrictionid: contact integrals %ld/%ld rows   ", p.done, p.total);
       break;
+    case FitStage::ModelRows:
+      std::fprintf(stderr, "\rfrictionid: model %ld/%ld rows   ", p.done, p.total);
+      break;
   }
 }
 

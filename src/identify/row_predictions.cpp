@@ -1,8 +1,12 @@
 #include "identify/row_predictions.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
+#include <thread>
 #include <vector>
+
+#include <frictionid/fit_error.hpp>
 
 #include "identify/row_chunks.hpp"
 
@@ -19,18 +23,38 @@ constexpr std::size_t kPredictionRows = 16;
 void predict_rows(const ModelEvaluator<double>& model, std::size_t rows,
                   const std::function<model::Kinematics(std::size_t)>& kinematics,
                   const std::function<void(std::size_t, const model::Resultants<double>&)>& store,
-                  int threads) {
+                  int threads, FitObserver* observer) {
   const std::size_t parts = (rows + kPredictionRows - 1) / kPredictionRows;
   // The first failing row's error, so that the message does not depend on the threads either.
   std::vector<std::exception_ptr> errors(parts);
+  std::atomic<bool> stopped{false};
+  std::atomic<long> done{0};
+  long shown = 0;  // the calling thread's
+  const std::thread::id caller = std::this_thread::get_id();
   for_each_chunk(parts, resolve_thread_count(threads), [&](std::size_t part) {
-    const std::size_t end = std::min(rows, (part + 1) * kPredictionRows);
+    if (stopped.load(std::memory_order_relaxed)) return;
+    if (observer && observer->cancelled()) {
+      stopped = true;
+      return;
+    }
+    const long now = done.load(std::memory_order_relaxed);
+    if (observer && std::this_thread::get_id() == caller && now - shown >= kModelRowsStep) {
+      shown = now;
+      FitProgress p;
+      p.stage = FitStage::ModelRows;
+      p.done = now;
+      p.total = static_cast<long>(rows);
+      observer->on_progress(p);
+    }
+    const std::size_t begin = part * kPredictionRows, end = std::min(rows, begin + kPredictionRows);
     try {
-      for (std::size_t i = part * kPredictionRows; i < end; ++i) store(i, model(kinematics(i)));
+      for (std::size_t i = begin; i < end; ++i) store(i, model(kinematics(i)));
     } catch (...) {
       errors[part] = std::current_exception();
     }
+    done += static_cast<long>(end - begin);
   });
+  if (stopped) throw FitError("interrupted");
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);
 }

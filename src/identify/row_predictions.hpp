@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <functional>
 
+#include <frictionid/fit_observer.hpp>
 #include <frictionid/model/kinematics.hpp>
 #include <frictionid/model_variant.hpp>
 
@@ -15,10 +16,13 @@ namespace frictionid {
 // called from those threads, once per row: it must write only row i's own slots. A row of a
 // non-circular spot integrated by itself costs 6-600 us, so the rows go out a few at a time. A row
 // that throws ends its part, and the first such row's error is rethrown, whichever thread met
-// another first.
+// another first. The observer (may be null) hears the rows done (FitStage::ModelRows, every
+// kModelRowsStep, from the calling thread) and is asked between parts whether to cancel, which
+// ends the pass with FitError("interrupted").
+inline constexpr long kModelRowsStep = 1024;
 void predict_rows(const ModelEvaluator<double>& model, std::size_t rows,
                   const std::function<model::Kinematics(std::size_t)>& kinematics,
                   const std::function<void(std::size_t, const model::Resultants<double>&)>& store,
-                  int threads);
+                  int threads, FitObserver* observer = nullptr);
 
 }  // namespace frictionid

@@ -13,6 +13,7 @@
 #include <frictionid/model_variant.hpp>
 
 #include "identify/row_chunks.hpp"
+#include "identify/table_progress_check.hpp"
 
 namespace frictionid {
 
@@ -48,16 +49,8 @@ std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(const Datase
   };
   std::unique_ptr<const model::SpotIntegralTable> table;
   if (const std::size_t budget = spot_table_budget(s.contact, law, spinning_rows)) {
-    std::atomic<long> points{0};
-    long shown = 0;  // the caller's
-    const std::function<bool()> count_and_stop = [&] {
-      const long n = ++points;
-      if (observer && std::this_thread::get_id() == caller && n - shown >= kTablePointsStep) {
-        shown = n;
-        report(FitStage::ContactTable, n, static_cast<long>(budget));
-      }
-      return stop();
-    };
+    const std::function<bool()> count_and_stop =
+        table_progress_check(observer, static_cast<long>(budget));
     try {
       table = std::make_unique<const model::SpotIntegralTable>(
           s.contact, law, q, count_and_stop,

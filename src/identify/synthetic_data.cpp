@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "identify/row_predictions.hpp"
+#include "identify/table_progress_check.hpp"
 
 namespace frictionid {
 
@@ -42,10 +43,32 @@ double NormalStream::next() {
   return u * f;
 }
 
+namespace {
+
+// The rows of one block as the observer's rows of the whole design.
+class BlockObserver : public FitObserver {
+ public:
+  BlockObserver(FitObserver* whole, long rows) : whole_(whole), rows_(rows) {}
+  long first = 0;  // the block's first row
+  void on_progress(const FitProgress& p) override {
+    FitProgress q = p;
+    q.done += first;
+    q.total = rows_;
+    whole_->on_progress(q);
+  }
+  bool cancelled() const override { return whole_->cancelled(); }
+
+ private:
+  FitObserver* whole_;
+  long rows_;
+};
+
+}  // namespace
+
 Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
                          const std::array<double, kParamCount>& params,
                          const SyntheticDesign& design, const NoiseSpec& noise, std::uint64_t seed,
-                         const model::ContactSpot& contact, int threads) {
+                         const model::ContactSpot& contact, int threads, FitObserver* observer) {
   if (design.rows == 0) throw std::invalid_argument("the design has no rows");
   if (!(design.eps_min > 0.0) || !(design.eps_max >= design.eps_min))
     throw std::invalid_argument("the eps range must satisfy 0 < eps_min <= eps_max");
@@ -54,7 +77,8 @@ Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
   const ModelEvaluator<double> model(
       kind, law, params.data(),
       ring_table_for_rows(kind, law, params[kN], false, design.rows, contact), nullptr,
-      spot_for_rows(kind, law, params[kQ], params[kN], design.rows, contact, threads));
+      observed_spot_for_rows(kind, law, params[kQ], params[kN], design.rows, contact, threads,
+                             observer));
   const int channels =
       contact.kind != model::SpotKind::Circle || params[kHy] != 0.0 ? kChannelCount : 4;
   const std::size_t n = design.rows;
@@ -80,12 +104,14 @@ Dataset generate_dataset(ModelKind kind, const model::PressureLaw<double>& law,
   // numbers on any number of threads, and memory for one block's predictions only.
   constexpr std::size_t kBlock = 65536;
   std::vector<model::Resultants<double>> predicted(std::min(kBlock, n));
+  BlockObserver block(observer, static_cast<long>(n));
   for (std::size_t first = 0; first < n; first += kBlock) {
     const std::size_t count = std::min(kBlock, n - first);
+    block.first = static_cast<long>(first);
     predict_rows(
         model, count, [&row, first](std::size_t i) { return row(first + i); },
         [&predicted](std::size_t i, const model::Resultants<double>& r) { predicted[i] = r; },
-        threads);
+        threads, observer ? &block : nullptr);
     for (std::size_t b = 0; b < count; ++b) {
       const std::size_t i = first + b;
       const model::Kinematics k = row(i);

@@ -24,6 +24,8 @@ const char* stage_name(FitStage s) {
       return "contact table";
     case FitStage::ContactRows:
       return "contact integrals";
+    case FitStage::ModelRows:
+      return "model rows";
   }
   return "";
 }

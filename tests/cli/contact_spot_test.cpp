@@ -2,15 +2,21 @@
 // ellipse of aspect 1 as the circle, datasets generated on a spot and fitted back, the aspect q
 // fitted with --free q, circle and ellipse side by side in compare, reports that name the spot
 // and fingerprint a map, and every rejection with exit 2, one line and nothing written.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -307,6 +313,73 @@ TEST(ContactSpotCli, EvalAndGenerateOnAMapWriteTheSameBytesOnOneAndTwoThreads) {
   const std::string one = read_file(dir / "e1.csv");
   EXPECT_EQ(one, read_file(dir / "e2.csv"));
   EXPECT_EQ(lines_of(one), 201u);
+}
+
+TEST(ContactSpotCli, EvalShowsTheModelsRowsOnTheProgressLine) {
+  const ScratchDir dir("contact_" + test_name());
+  const std::string data = dir / "map.csv";
+  ASSERT_EQ(generate_on_footprint(data, 3000), 0);
+  const std::string eval = "eval --model exact --contact map:" + kFootprint +
+                           " --param f=0.8,h_y=0.03 --threads 1 --input " + data + " --output ";
+  const SplitResult shown = run_frictionid_split(eval + (dir / "shown.csv") + " --progress");
+  ASSERT_EQ(shown.code, 0) << shown.err;
+  const std::size_t first = shown.err.find("\rfrictionid: model 1024/3000 rows");
+  ASSERT_NE(first, std::string::npos) << shown.err;
+  EXPECT_GT(shown.err.find("\rfrictionid: model 2048/3000 rows"), first) << shown.err;
+  ASSERT_EQ(run_frictionid(eval + (dir / "quiet.csv")).code, 0);
+  EXPECT_EQ(read_file(dir / "shown.csv"), read_file(dir / "quiet.csv"));
+}
+
+// Ctrl-C while generate runs the model over the rows of a large map (integrated one by one: a
+// table would need more points than the rows): exit 130, a line that says the file was not
+// written, and nothing written.
+TEST(ContactSpotCli, GenerateStopsOnCtrlCWithNothingWritten) {
+  const char* exe = std::getenv("FRICTIONID_EXE");
+  ASSERT_NE(exe, nullptr);
+  const ScratchDir dir("contact_" + test_name());
+  const std::string map = dir / "map40.csv", out = dir / "out.csv", err = dir / "stderr.txt";
+  {
+    std::ofstream m(map);
+    m << "x,y,sigma0\n";
+    for (int j = 0; j < 40; ++j)
+      for (int i = 0; i < 40; ++i) {
+        const double x = -1.0 + i / 19.5, y = -0.8 + j * 1.6 / 39.0;
+        m << x << ',' << y << ',' << std::max(0.0, (1.0 - x * x) * (1.0 - y * y / 0.64)) << '\n';
+      }
+  }
+  const std::string spot = "map:" + map;
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, STDERR_FILENO);
+    ::execl(exe, exe, "generate", "--model", "exact", "--contact", spot.c_str(), "--rows", "50000",
+            "--progress", "--output", out.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // The progress line shows the model's rows once they run, after the handler is installed.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  auto running = [&] { return read_file(err).find("frictionid: model ") != std::string::npos; };
+  while (!running() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_TRUE(running()) << read_file(err);
+  ::kill(pid, SIGINT);
+  int status = 0;
+  pid_t done = 0;
+  while ((done = ::waitpid(pid, &status, WNOHANG)) == 0 &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  if (done == 0) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+    FAIL() << "generate did not stop after SIGINT";
+  }
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_NE(read_file(err).find("frictionid: interrupted; " + out + " not written"),
+            std::string::npos)
+      << read_file(err);
+  EXPECT_EQ(files_in(dir.path()).size(), 2u);  // the map and stderr.txt
 }
 
 TEST(ContactSpotCli, CoefficientsOfASpotAreItsSlopeMatchedOnes) {

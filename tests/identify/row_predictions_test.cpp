@@ -2,12 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include <frictionid/fit_error.hpp>
 #include <frictionid/model/contact_spot.hpp>
 
 namespace frictionid::row_predictions_test {
@@ -81,6 +84,58 @@ TEST(RowPredictions, TheFirstFailingRowsErrorIsRethrownWhicheverThreadMeetsAnoth
         EXPECT_EQ(std::string(e.what()), "row 40") << threads << " threads";
       }
     }
+}
+
+// Hears ModelRows and remembers from which threads; cancels after `cancel_after` questions.
+class Listener : public FitObserver {
+ public:
+  explicit Listener(long cancel_after = -1) : cancel_after_(cancel_after) {}
+  void on_progress(const FitProgress& p) override {
+    EXPECT_EQ(p.stage, FitStage::ModelRows);
+    done.push_back(p.done);
+    total = p.total;
+    same_thread = same_thread && std::this_thread::get_id() == caller;
+  }
+  bool cancelled() const override { return cancel_after_ >= 0 && ++asked_ > cancel_after_; }
+  std::vector<long> done;
+  long total = 0;
+  bool same_thread = true;
+  const std::thread::id caller = std::this_thread::get_id();
+
+ private:
+  long cancel_after_;
+  mutable std::atomic<long> asked_{0};
+};
+
+TEST(RowPredictions, TheObserverHearsTheRowsEveryStepFromTheCallingThreadOnly) {
+  const auto p = default_parameters(Law::hertz(), 0.9, 1.0, 0.0);
+  const ModelEvaluator<double> model(ModelKind::Seed, Law::hertz(), p.data());
+  const auto ignore = [](std::size_t, const model::Resultants<double>&) {};
+  Listener one;
+  predict_rows(model, 5000, row, ignore, 1, &one);
+  EXPECT_EQ(one.done, (std::vector<long>{1024, 2048, 3072, 4096}));
+  EXPECT_EQ(one.total, 5000);
+  Listener two;
+  predict_rows(model, 50000, row, ignore, 2, &two);
+  EXPECT_TRUE(two.same_thread);
+  for (std::size_t k = 1; k < two.done.size(); ++k)
+    EXPECT_GE(two.done[k] - two.done[k - 1], kModelRowsStep) << k;
+}
+
+TEST(RowPredictions, AnObserverThatCancelsEndsThePassWithInterrupted) {
+  const auto p = default_parameters(Law::hertz(), 0.9, 1.0, 0.0);
+  const ModelEvaluator<double> model(ModelKind::Seed, Law::hertz(), p.data());
+  std::atomic<std::size_t> stored{0};
+  Listener stop(10);
+  try {
+    predict_rows(
+        model, 100000, row, [&stored](std::size_t, const model::Resultants<double>&) { ++stored; },
+        2, &stop);
+    FAIL() << "not cancelled";
+  } catch (const FitError& e) {
+    EXPECT_EQ(std::string(e.what()), "interrupted");
+  }
+  EXPECT_LT(stored.load(), 100000u);
 }
 
 TEST(RowPredictions, NoRowsStoreNothing) {
