@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -27,6 +28,7 @@
 
 #include <frictionid/io/dataset_csv.hpp>
 #include "support/scratch_dir.hpp"
+#include "support/signalled_run.hpp"
 #include "support/without_traceability.hpp"
 
 namespace bad_input_test {
@@ -533,48 +535,30 @@ TEST(BadInput, UnwritableReportOrOutputFailsWithExitOneAndLeavesNoTemporaryFile)
 
 // Ctrl-C (SIGINT) and SIGTERM during a long fit: exit 130, no report, no temporary file.
 TEST(BadInput, InterruptedFitExits130WithoutAReport) {
-  const char* exe = std::getenv("FRICTIONID_EXE");
-  ASSERT_NE(exe, nullptr);
   for (const int sig : {SIGINT, SIGTERM}) {
     ScratchDir dir("interrupt_" + std::to_string(sig));
     const std::string data = (fs::path(FRICTIONID_SOURCE_DIR) / "data/example_hertz.csv").string();
     const std::string report = (dir / "report");
     const std::string err = (dir / "stderr.txt");
-    const pid_t pid = ::fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-      const int fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      ::dup2(fd, STDERR_FILENO);
-      const int null = ::open("/dev/null", O_WRONLY);
-      ::dup2(null, STDOUT_FILENO);
-      ::execl(exe, exe, "fit", data.c_str(), "--model", "exact", "--global-evaluations", "1000000",
-              "--starts", "20", "--progress", "--report", report.c_str(),
-              static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
+    const pid_t pid = frictionid::test::start_frictionid(
+        {"fit", data, "--model", "exact", "--global-evaluations", "1000000", "--starts", "20",
+         "--progress", "--report", report},
+        err);
+    ASSERT_GT(pid, 0);
     // --progress writes to stderr once the fit runs, i.e. after the handler is installed.
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    auto started = [&] {
-      std::error_code ec;
-      const auto size = fs::file_size(err, ec);
-      return !ec && size > 0;
-    };
-    while (!started() && std::chrono::steady_clock::now() < deadline)
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    ASSERT_TRUE(started()) << "no progress output from the fit";
-    ::kill(pid, sig);
-    int status = 0;
-    pid_t done = 0;
-    while ((done = ::waitpid(pid, &status, WNOHANG)) == 0 &&
-           std::chrono::steady_clock::now() < deadline)
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    if (done == 0) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
-      FAIL() << "the fit did not stop after signal " << sig;
-    }
-    ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
-    EXPECT_EQ(WEXITSTATUS(status), 130);
+    const bool started = frictionid::test::wait_for(
+        [&] {
+          std::error_code ec;
+          const auto size = fs::file_size(err, ec);
+          return !ec && size > 0;
+        },
+        deadline);
+    ASSERT_TRUE(started) << "no progress output from the fit";
+    const std::optional<int> status = frictionid::test::signal_and_wait(pid, sig, deadline);
+    ASSERT_TRUE(status) << "the fit did not stop after signal " << sig;
+    ASSERT_TRUE(WIFEXITED(*status)) << "killed by signal " << WTERMSIG(*status);
+    EXPECT_EQ(WEXITSTATUS(*status), 130);
     EXPECT_NE(read_file(err).find("no report written"), std::string::npos);
     EXPECT_EQ(listing(dir.path()), std::vector<std::string>{"stderr.txt"});
   }

@@ -2,9 +2,7 @@
 // ellipse of aspect 1 as the circle, datasets generated on a spot and fitted back, the aspect q
 // fitted with --free q, circle and ellipse side by side in compare, reports that name the spot
 // and fingerprint a map, and every rejection with exit 2, one line and nothing written.
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -14,9 +12,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -25,6 +23,7 @@
 #include "support/matched_digits.hpp"
 #include "support/run_command.hpp"
 #include "support/scratch_dir.hpp"
+#include "support/signalled_run.hpp"
 #include "support/without_traceability.hpp"
 
 namespace contact_spot_test {
@@ -334,8 +333,6 @@ TEST(ContactSpotCli, EvalShowsTheModelsRowsOnTheProgressLine) {
 // table would need more points than the rows): exit 130, a line that says the file was not
 // written, and nothing written.
 TEST(ContactSpotCli, GenerateStopsOnCtrlCWithNothingWritten) {
-  const char* exe = std::getenv("FRICTIONID_EXE");
-  ASSERT_NE(exe, nullptr);
   const ScratchDir dir("contact_" + test_name());
   const std::string map = dir / "map40.csv", out = dir / "out.csv", err = dir / "stderr.txt";
   {
@@ -347,35 +344,20 @@ TEST(ContactSpotCli, GenerateStopsOnCtrlCWithNothingWritten) {
         m << x << ',' << y << ',' << std::max(0.0, (1.0 - x * x) * (1.0 - y * y / 0.64)) << '\n';
       }
   }
-  const std::string spot = "map:" + map;
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    const int fd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ::dup2(fd, STDERR_FILENO);
-    ::execl(exe, exe, "generate", "--model", "exact", "--contact", spot.c_str(), "--rows", "50000",
-            "--progress", "--output", out.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
+  const pid_t pid =
+      frictionid::test::start_frictionid({"generate", "--model", "exact", "--contact", "map:" + map,
+                                          "--rows", "50000", "--progress", "--output", out},
+                                         err);
+  ASSERT_GT(pid, 0);
   // The progress line shows the model's rows once they run, after the handler is installed.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  auto running = [&] { return read_file(err).find("frictionid: model ") != std::string::npos; };
-  while (!running() && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  ASSERT_TRUE(running()) << read_file(err);
-  ::kill(pid, SIGINT);
-  int status = 0;
-  pid_t done = 0;
-  while ((done = ::waitpid(pid, &status, WNOHANG)) == 0 &&
-         std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  if (done == 0) {
-    ::kill(pid, SIGKILL);
-    ::waitpid(pid, &status, 0);
-    FAIL() << "generate did not stop after SIGINT";
-  }
-  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  ASSERT_TRUE(frictionid::test::wait_for(
+      [&] { return read_file(err).find("frictionid: model ") != std::string::npos; }, deadline))
+      << read_file(err);
+  const std::optional<int> status = frictionid::test::signal_and_wait(pid, SIGINT, deadline);
+  ASSERT_TRUE(status) << "generate did not stop after SIGINT";
+  ASSERT_TRUE(WIFEXITED(*status)) << "killed by signal " << WTERMSIG(*status);
+  EXPECT_EQ(WEXITSTATUS(*status), 130);
   EXPECT_NE(read_file(err).find("frictionid: interrupted; " + out + " not written"),
             std::string::npos)
       << read_file(err);
