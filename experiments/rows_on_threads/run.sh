@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # What do threads save eval and generate on a spot whose rows are integrated one by one? 10,000
 # rows on the bundled footprint sampled on a 64 x 64 grid (scripts/make-footprint-map), where a
-# table would cost more than the rows and each row takes ~0.4 ms (README.md, "frictionid eval").
+# table would cost more than the rows and each row takes ~0.6 ms (README.md, "frictionid eval").
 #
 #   experiments/rows_on_threads/run.sh     # binary: $FRICTIONID, else build/frictionid
 #
@@ -11,10 +11,7 @@
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-root="$(cd "$here/../.." && pwd)"
-bin="${FRICTIONID:-$root/build/frictionid}"
-[[ "$bin" = /* ]] || bin="$PWD/$bin"
-[[ -x "$bin" ]] || { echo "run.sh: no executable frictionid at $bin (set FRICTIONID)" >&2; exit 1; }
+source "$here/../common.sh"  # root, bin ($FRICTIONID or build/frictionid), py
 REPS=${REPS:-5}
 ROWS=${ROWS:-10000}
 out="$here/out"
@@ -30,7 +27,7 @@ seconds() {  # wall seconds of the command
   awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }'
 }
 
-/usr/bin/python3 "$root/scripts/make-footprint-map" "$out/map64.csv" 64 64
+"$py" "$root/scripts/make-footprint-map" "$out/map64.csv" 64 64
 model=(--model exact --contact "map:$out/map64.csv" --param f=0.8,kappa=1.1,h=0.05,h_y=0.03)
 design=(--rows "$ROWS" --noise 0.01 --slip-angles 0,4,-4)
 cores=$(nproc)

@@ -1,14 +1,10 @@
 // frictionid eval: the resultants a model predicts, at one point (JSON on stdout) or for every
 // row of a file.
-#include <cstdio>
 #include <iostream>
-
-#include <frictionid/fit_error.hpp>
 
 #include "app/evaluation.hpp"
 #include "cli/commands.hpp"
 #include "cli/exit_codes.hpp"
-#include "cli/signals.hpp"
 #include "cli/terminal_observer.hpp"
 #include "io/text.hpp"
 
@@ -17,16 +13,9 @@ namespace frictionid::cli {
 int run_eval(const app::EvalRequest& r) {
   if (!r.input.empty()) {
     std::size_t rows = 0;
-    const std::atomic<bool>* interrupted = install_interrupt_handler();
-    try {
-      TerminalObserver observer(interrupted, show_progress(r.progress));
-      rows = app::evaluate_file(r, &observer);
-    } catch (const FitError&) {
-      if (!interrupted->load()) throw;
-      std::fprintf(stderr, "frictionid: interrupted; %s not written\n",
-                   text::for_terminal(r.output).c_str());
+    if (!run_stoppable(r.progress, r.output,
+                       [&](FitObserver& observer) { rows = app::evaluate_file(r, &observer); }))
       return kExitInterrupted;
-    }
     std::cerr << "frictionid: wrote " << rows << " rows to " << text::for_terminal(r.output)
               << "\n";
     return kExitOk;

@@ -4,6 +4,11 @@
 #include <cstdlib>
 #include <string>
 
+#include <frictionid/fit_error.hpp>
+
+#include "cli/signals.hpp"
+#include "io/text.hpp"
+
 namespace frictionid::cli {
 
 TerminalObserver::TerminalObserver(const std::atomic<bool>* interrupted, bool progress)
@@ -42,6 +47,21 @@ void TerminalObserver::on_progress(const FitProgress& p) {
 
 void TerminalObserver::on_log(const std::string& line) {
   if (solver_report_) std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+bool run_stoppable(bool progress, const std::string& output,
+                   const std::function<void(FitObserver&)>& work) {
+  const std::atomic<bool>* interrupted = install_interrupt_handler();
+  try {
+    TerminalObserver observer(interrupted, show_progress(progress));
+    work(observer);
+  } catch (const FitError&) {
+    if (!interrupted->load()) throw;
+    std::fprintf(stderr, "frictionid: interrupted; %s not written\n",
+                 text::for_terminal(output).c_str());
+    return false;
+  }
+  return true;
 }
 
 }  // namespace frictionid::cli

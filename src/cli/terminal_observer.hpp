@@ -3,6 +3,8 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
+#include <string>
 
 #include <frictionid/fit_observer.hpp>
 
@@ -24,5 +26,11 @@ class TerminalObserver : public FitObserver {
   bool solver_report_;
   bool line_shown_ = false;
 };
+
+// Runs `work` with a TerminalObserver that shows progress when asked or on a terminal and takes
+// Ctrl-C as cancellation (eval, generate). False when Ctrl-C stopped it (work's FitError), after
+// saying on stderr that `output` was not written; work's other errors pass through.
+bool run_stoppable(bool progress, const std::string& output,
+                   const std::function<void(FitObserver&)>& work);
 
 }  // namespace frictionid::cli
