@@ -3,7 +3,7 @@ line's eval, coefficients, generate and simulate."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Dict, Mapping, Optional, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Dict, Mapping, Optional, Sequence
 
 import numpy as np
 
@@ -27,6 +27,8 @@ def evaluate(
     *,
     contact: str = "circle",
     threads: int = 0,
+    cancel: Any = None,
+    progress: Optional[Callable[[Dict[str, Any]], None]] = None,
 ) -> Dict[str, np.ndarray]:
     """The resultants ``model`` predicts, vectorised (numpy broadcasting over the inputs).
 
@@ -42,6 +44,10 @@ def evaluate(
         contact: the contact spot, as for :func:`fit` (``--contact``).
         threads: threads for the rows (0: every core; 1 in a Dask task on a one-thread worker);
             the values do not depend on it.
+        cancel: as for :func:`fit`: once set, the rows stop and :class:`FitCancelled` is raised
+            (Ctrl-C in the main thread raises ``KeyboardInterrupt``).
+        progress: as for :func:`fit`, with the stages ``"contact table"`` (a spot's table: its
+            points and budget) and ``"model rows"`` (rows done of all).
 
     Returns:
         ``{"T_x", "T_y", "M_z", "M_roll", "N"}`` -> float64 arrays of the broadcast shape, and
@@ -58,7 +64,8 @@ def evaluate(
     flat = [np.ascontiguousarray(a.reshape(-1)) for a in arrays]
     out = _frictionid.evaluate(model, "hertz" if pressure is None else pressure,
                                _options.values("--param", params), *flat, contact=contact,
-                               pressure_given=pressure is not None, threads=threads)
+                               pressure_given=pressure is not None, threads=threads,
+                               cancel=cancel, progress=progress)
     return {k: v.reshape(shape) for k, v in out.items()}
 
 
@@ -104,6 +111,8 @@ def generate(
     slip_angles_deg: Sequence[float] = (0.0,),
     forward_only: bool = False,
     threads: int = 0,
+    cancel: Any = None,
+    progress: Optional[Callable[[Dict[str, Any]], None]] = None,
 ) -> "pandas.DataFrame":
     """A synthetic dataset from ``model``, as ``frictionid generate`` writes it (same design,
     same seeded noise, same numbers).
@@ -120,6 +129,7 @@ def generate(
         forward_only: no backward-slipping rows (else every 4th row has v_x < 0).
         threads: threads for the model's rows (0: every core, as for :func:`evaluate`); the data
             do not depend on it.
+        cancel, progress: as for :func:`evaluate`.
 
     Returns:
         A pandas DataFrame with the canonical columns (``M_tilt`` too on a spot other than the
@@ -134,7 +144,7 @@ def generate(
                                [float(x) for x in loads], R, spin,
                                [float(x) for x in slip_angles_deg], forward_only,
                                contact=contact, pressure_given=pressure is not None,
-                               threads=threads)
+                               threads=threads, cancel=cancel, progress=progress)
     df = _data.frame(out["columns"])
     df.attrs["truth"] = dict(out["truth"]["parameters"])
     df.attrs["pressure"] = out["truth"]["pressure"]

@@ -88,7 +88,8 @@ std::size_t evaluate_file(const EvalRequest& r, FitObserver* observer) {
   return d.rows();
 }
 
-ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& k, int threads) {
+ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& k, int threads,
+                                  FitObserver* observer) {
   check_thread_option(threads);
   const double* inputs[] = {k.v_x, k.v_y, k.omega, k.N, k.R};
   const char* names[] = {"v_x", "v_y", "omega", "N", "R"};
@@ -105,7 +106,8 @@ ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& 
   const ModelEvaluator<double> eval(
       s.kind, s.law, s.params.data(),
       ring_table_for_rows(s.kind, s.law, s.params[kN], false, k.rows, s.contact), nullptr,
-      spot_for_rows(s.kind, s.law, s.params[kQ], s.params[kN], k.rows, s.contact, threads));
+      observed_spot_for_rows(s.kind, s.law, s.params[kQ], s.params[kN], k.rows, s.contact, threads,
+                             observer));
   predict_rows(
       eval, k.rows,
       [&k](std::size_t i) {
@@ -119,7 +121,7 @@ ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& 
         out.M_tilt[i] = p.M_tilt;
         out.N[i] = p.N;
       },
-      threads);
+      threads, observer);
   return out;
 }
 

@@ -42,7 +42,9 @@ struct ResultantColumns {
 };
 
 // Throws InputError naming the column and the index of the first bad value. The rows run on up
-// to `threads` threads (0: every hardware thread); the values do not depend on how many.
-ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& k, int threads = 0);
+// to `threads` threads (0: every hardware thread); the values do not depend on how many. The
+// observer as evaluate_file's.
+ResultantColumns evaluate_columns(const ModelSetup& s, const KinematicsColumns& k, int threads = 0,
+                                  FitObserver* observer = nullptr);
 
 }  // namespace frictionid::app

@@ -10,6 +10,7 @@
 #include "python/bindings.hpp"
 #include "python/json_values.hpp"
 #include "python/numpy_columns.hpp"
+#include "python/python_observer.hpp"
 
 namespace py = pybind11;
 
@@ -22,7 +23,7 @@ py::dict evaluate(const std::string& model, const std::string& pressure,
                   const app::ParameterValues& params, const DoubleArray& v_x,
                   const DoubleArray& v_y, const DoubleArray& omega, const DoubleArray& N,
                   const DoubleArray& R, const std::string& contact, bool pressure_given,
-                  int threads) {
+                  int threads, const py::object& cancel, const py::object& progress) {
   const app::ModelSetup s =
       app::make_model_setup({model, pressure, params, contact, pressure_given});
   const std::size_t rows = static_cast<std::size_t>(v_x.size());
@@ -33,11 +34,10 @@ py::dict evaluate(const std::string& model, const std::string& pressure,
       throw InputError(
           fmt::format("{}: expected a one-dimensional array of {} values", names[k], rows));
   app::ResultantColumns out;
-  {
-    py::gil_scoped_release release;
+  run_observed(cancel, progress, [&](FitObserver& observer) {
     out = app::evaluate_columns(s, {v_x.data(), v_y.data(), omega.data(), N.data(), R.data(), rows},
-                                threads);
-  }
+                                threads, &observer);
+  });
   py::dict d;
   d["T_x"] = to_numpy(out.T_x);
   d["T_y"] = to_numpy(out.T_y);
@@ -53,7 +53,8 @@ py::dict evaluate(const std::string& model, const std::string& pressure,
 void register_evaluate(py::module_& m) {
   m.def("evaluate", &evaluate, py::arg("model"), py::arg("pressure"), py::arg("params"),
         py::arg("v_x"), py::arg("v_y"), py::arg("omega"), py::arg("N"), py::arg("R"),
-        py::arg("contact") = "circle", py::arg("pressure_given") = true, py::arg("threads") = 0);
+        py::arg("contact") = "circle", py::arg("pressure_given") = true, py::arg("threads") = 0,
+        py::arg("cancel") = py::none(), py::arg("progress") = py::none());
   m.def(
       "coefficients",
       [](const std::string& pressure, double kappa, double alpha, const std::string& contact,

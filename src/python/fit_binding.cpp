@@ -49,18 +49,11 @@ std::shared_ptr<FitOutput> run_fit(const std::shared_ptr<Dataset>& data,
   const FitSettings s = app::fit_settings(request, request.model, *data);
   auto out = std::make_shared<FitOutput>();
   out->data = data;
-  PythonObserver observer(cancel, progress);
-  try {
-    py::gil_scoped_release release;
+  run_observed(cancel, progress, [&](FitObserver& observer) {
     ThreadBudget budget(request.threads);  // threads= bounds the fit's and its report's threads
     const ThreadBudgetScope scope(&budget);
     out->result = app::fit_dataset(s, *data, &observer, out->sigma);
-  } catch (const FitError&) {
-    observer.rethrow_pending();  // Ctrl-C: KeyboardInterrupt rather than FitError("interrupted")
-    if (observer.stopped()) throw FitCancelled("cancelled");
-    throw;
-  }
-  observer.rethrow_pending();
+  });
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include "python/bindings.hpp"
 #include "python/json_values.hpp"
 #include "python/numpy_columns.hpp"
+#include "python/python_observer.hpp"
 
 namespace py = pybind11;
 
@@ -18,7 +19,8 @@ py::dict generate(const std::string& model, const std::string& pressure,
                   double noise_abs, bool sigma_columns, unsigned long long seed, double eps_min,
                   double eps_max, const std::vector<double>& loads, double R, double spin,
                   const std::vector<double>& slip_angles_deg, bool forward_only,
-                  const std::string& contact, bool pressure_given, int threads) {
+                  const std::string& contact, bool pressure_given, int threads,
+                  const py::object& cancel, const py::object& progress) {
   app::GenerateRequest r;
   r.model = {model, pressure, params, contact, pressure_given};
   r.rows = rows;
@@ -35,10 +37,7 @@ py::dict generate(const std::string& model, const std::string& pressure,
   r.forward_only = forward_only;
   r.threads = threads;
   app::GeneratedData g;
-  {
-    py::gil_scoped_release release;
-    g = app::generate(r);
-  }
+  run_observed(cancel, progress, [&](FitObserver& observer) { g = app::generate(r, &observer); });
   py::dict out;
   out["columns"] = dataset_columns(g.data);
   out["truth"] = to_python(app::truth_json(r, g));
@@ -52,7 +51,8 @@ void register_generate(py::module_& m) {
         py::arg("rows"), py::arg("noise"), py::arg("noise_abs"), py::arg("sigma_columns"),
         py::arg("seed"), py::arg("eps_min"), py::arg("eps_max"), py::arg("loads"), py::arg("R"),
         py::arg("spin"), py::arg("slip_angles_deg"), py::arg("forward_only"),
-        py::arg("contact") = "circle", py::arg("pressure_given") = true, py::arg("threads") = 0);
+        py::arg("contact") = "circle", py::arg("pressure_given") = true, py::arg("threads") = 0,
+        py::arg("cancel") = py::none(), py::arg("progress") = py::none());
 }
 
 }  // namespace frictionid::python

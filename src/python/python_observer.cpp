@@ -3,6 +3,8 @@
 #include <set>
 #include <utility>
 
+#include "python/bindings.hpp"
+
 namespace py = pybind11;
 
 namespace frictionid::python {
@@ -129,6 +131,20 @@ void PythonObserver::rethrow_pending() {
     e.swap(pending_);
   }
   if (e) throw std::move(*e);
+}
+
+void run_observed(const pybind11::object& cancel, const pybind11::object& progress,
+                  const std::function<void(FitObserver&)>& work) {
+  PythonObserver observer(cancel, progress);
+  try {
+    pybind11::gil_scoped_release release;
+    work(observer);
+  } catch (const FitError&) {
+    observer.rethrow_pending();  // Ctrl-C: KeyboardInterrupt rather than FitError("interrupted")
+    if (observer.stopped()) throw FitCancelled("cancelled");
+    throw;
+  }
+  observer.rethrow_pending();
 }
 
 }  // namespace frictionid::python

@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -72,5 +73,11 @@ class PythonObserver : public FitObserver {
   mutable std::chrono::steady_clock::time_point last_poll_, last_progress_;
   mutable std::optional<pybind11::error_already_set> pending_;
 };
+
+// Runs `work` with the GIL released and a PythonObserver on cancel and progress (fit()'s
+// arguments), as evaluate() and generate() do: Ctrl-C raises KeyboardInterrupt, a set token
+// FitCancelled, an exception of the callback itself. Call with the GIL held.
+void run_observed(const pybind11::object& cancel, const pybind11::object& progress,
+                  const std::function<void(FitObserver&)>& work);
 
 }  // namespace frictionid::python

@@ -126,6 +126,35 @@ def test_evaluate_and_generate_give_the_same_numbers_on_any_threads(footprint):
                             threads=-1)
 
 
+def test_evaluate_and_generate_report_their_rows_and_stop_on_a_token(footprint):
+    rng = np.random.default_rng(5)
+    n = 3000
+    v_x, v_y = rng.normal(0.0, 0.2, n), rng.normal(0.0, 0.05, n)
+    omega = np.where(np.arange(n) % 2 == 0, 2.0, -2.0)
+    params = {"f": 0.8, "h_y": 0.03}
+    spot = f"map:{footprint}"
+    seen = []
+    heard = frictionid.evaluate("exact", None, params, v_x, v_y, omega, 3000.0, 0.05,
+                                contact=spot, threads=1, progress=seen.append)
+    rows = [p for p in seen if p["stage"] == "model rows"]
+    assert rows and all(p["total"] == n and 0 < p["done"] < n for p in rows), seen
+    quiet = frictionid.evaluate("exact", None, params, v_x, v_y, omega, 3000.0, 0.05,
+                                contact=spot, threads=1)
+    for k in quiet:
+        np.testing.assert_array_equal(heard[k], quiet[k])
+    seen.clear()
+    frictionid.generate("exact", None, params, contact=spot, rows=n, threads=1,
+                        progress=seen.append)
+    assert any(p["stage"] == "model rows" and p["total"] == n for p in seen), seen
+    token = frictionid.CancelToken()
+    token.cancel()
+    with pytest.raises(frictionid.FitCancelled):
+        frictionid.evaluate("exact", None, params, v_x, v_y, omega, 3000.0, 0.05,
+                            contact=spot, cancel=token)
+    with pytest.raises(frictionid.FitCancelled):
+        frictionid.generate("exact", None, params, contact=spot, rows=n, cancel=token)
+
+
 def test_coefficients_and_simulate_take_a_contact(run_cli, footprint):
     py = frictionid.coefficients(kappa=1.2, contact="ellipse:0.6")
     cli = json.loads(run_cli("coefficients", "--kappa", "1.2", "--contact",
