@@ -11,7 +11,7 @@
 #include <frictionid/io/input_error.hpp>
 #include "app/option_parsers.hpp"
 #include "identify/row_predictions.hpp"
-#include "identify/table_progress_check.hpp"
+#include "identify/observer_progress.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv_cell.hpp"
 

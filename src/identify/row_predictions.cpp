@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
-#include <thread>
 #include <vector>
 
 #include <frictionid/fit_error.hpp>
 
+#include "identify/observer_progress.hpp"
 #include "identify/row_chunks.hpp"
 
 namespace frictionid {
@@ -28,31 +28,21 @@ void predict_rows(const ModelEvaluator<double>& model, std::size_t rows,
   // The first failing row's error, so that the message does not depend on the threads either.
   std::vector<std::exception_ptr> errors(parts);
   std::atomic<bool> stopped{false};
-  std::atomic<long> done{0};
-  long shown = 0;  // the calling thread's
-  const std::thread::id caller = std::this_thread::get_id();
+  RowsProgress progress(observer, FitStage::ModelRows, static_cast<long>(rows));
   for_each_chunk(parts, resolve_thread_count(threads), [&](std::size_t part) {
     if (stopped.load(std::memory_order_relaxed)) return;
     if (observer && observer->cancelled()) {
       stopped = true;
       return;
     }
-    const long now = done.load(std::memory_order_relaxed);
-    if (observer && std::this_thread::get_id() == caller && now - shown >= kModelRowsStep) {
-      shown = now;
-      FitProgress p;
-      p.stage = FitStage::ModelRows;
-      p.done = now;
-      p.total = static_cast<long>(rows);
-      observer->on_progress(p);
-    }
+    progress.at();
     const std::size_t begin = part * kPredictionRows, end = std::min(rows, begin + kPredictionRows);
     try {
       for (std::size_t i = begin; i < end; ++i) store(i, model(kinematics(i)));
     } catch (...) {
       errors[part] = std::current_exception();
     }
-    done += static_cast<long>(end - begin);
+    progress.done(end - begin);
   });
   if (stopped) throw FitError("interrupted");
   for (const std::exception_ptr& e : errors)

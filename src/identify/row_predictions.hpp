@@ -17,9 +17,8 @@ namespace frictionid {
 // non-circular spot integrated by itself costs 6-600 us, so the rows go out a few at a time. A row
 // that throws ends its part, and the first such row's error is rethrown, whichever thread met
 // another first. The observer (may be null) hears the rows done (FitStage::ModelRows, every
-// kModelRowsStep, from the calling thread) and is asked between parts whether to cancel, which
-// ends the pass with FitError("interrupted").
-inline constexpr long kModelRowsStep = 1024;
+// kRowsStep of observer_progress.hpp, from the calling thread) and is asked between parts
+// whether to cancel, which ends the pass with FitError("interrupted").
 void predict_rows(const ModelEvaluator<double>& model, std::size_t rows,
                   const std::function<model::Kinematics(std::size_t)>& kinematics,
                   const std::function<void(std::size_t, const model::Resultants<double>&)>& store,

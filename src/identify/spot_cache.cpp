@@ -4,7 +4,6 @@
 #include <cmath>
 #include <functional>
 #include <mutex>
-#include <thread>
 #include <vector>
 
 #include <frictionid/fit_error.hpp>
@@ -12,8 +11,8 @@
 #include <frictionid/model/spot_point_integrator.hpp>
 #include <frictionid/model_variant.hpp>
 
+#include "identify/observer_progress.hpp"
 #include "identify/row_chunks.hpp"
-#include "identify/table_progress_check.hpp"
 
 namespace frictionid {
 
@@ -37,16 +36,6 @@ std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(const Datase
   // than the rows (model_variant.hpp, spot_table_budget). The table stays within 3e-11 of the
   // load of the integrals.
   const auto stop = [observer] { return observer != nullptr && observer->cancelled(); };
-  // Progress goes to the observer from the calling thread only (fit_observer.hpp), which works
-  // on the table and the rows beside the others; the counts are everyone's.
-  const std::thread::id caller = std::this_thread::get_id();
-  auto report = [observer](FitStage stage, long done, long total) {
-    FitProgress p;
-    p.stage = stage;
-    p.done = done;
-    p.total = total;
-    observer->on_progress(p);
-  };
   std::unique_ptr<const model::SpotIntegralTable> table;
   if (const std::size_t budget = spot_table_budget(s.contact, law, spinning_rows)) {
     const std::function<bool()> count_and_stop =
@@ -69,19 +58,14 @@ std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(const Datase
   std::vector<model::SpotIntegrals> values(rows);
   std::vector<std::uint8_t> spinning(rows, 0);
   std::atomic<bool> stopped{false};
-  std::atomic<long> done{0};
-  long shown = 0;  // the caller's
+  RowsProgress progress(observer, FitStage::ContactRows, static_cast<long>(rows));
   for_each_chunk(chunk_count(rows), threads, [&](std::size_t c) {
     if (stopped.load(std::memory_order_relaxed) || stop()) {
       stopped = true;
       return;
     }
     const std::size_t end = std::min(rows, (c + 1) * kChunkRows);
-    const long now = done.load(std::memory_order_relaxed);
-    if (observer && std::this_thread::get_id() == caller && now - shown >= kRowsStep) {
-      shown = now;
-      report(FitStage::ContactRows, now, static_cast<long>(rows));
-    }
+    progress.at();
     for (std::size_t i = c * kChunkRows; i < end; ++i) {
       if (data.omega[i] == 0.0 || !std::isfinite(data.omega[i])) continue;
       const auto [cx, cy] =
@@ -90,7 +74,7 @@ std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(const Datase
       values[i] = table ? (*table)(cx, cy) : integrate(cx, cy);
       spinning[i] = 1;
     }
-    done += static_cast<long>(end - c * kChunkRows);
+    progress.done(end - c * kChunkRows);
   });
   if (stopped) throw FitError("interrupted");
   auto cache = std::make_shared<model::SpotIntegralCache>(q, n);

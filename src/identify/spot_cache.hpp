@@ -10,6 +10,8 @@
 #include <frictionid/fit_settings.hpp>
 #include <frictionid/model/spot_integral_cache.hpp>
 
+#include "identify/observer_progress.hpp"
+
 namespace frictionid {
 
 // The integrals of every spinning row at the settings' q and exponent n (their initial values),
@@ -19,8 +21,8 @@ namespace frictionid {
 // The observer (may be null) is asked to cancel before every point of a table and between
 // chunks of rows, and a true answer ends the build with FitError("interrupted"); it hears the
 // table's points (FitStage::ContactTable, every kTablePointsStep of model_variant.hpp) and the
-// rows done (FitStage::ContactRows, every kRowsStep), in the calling thread.
-inline constexpr long kRowsStep = 1024;
+// rows done (FitStage::ContactRows, every kRowsStep of observer_progress.hpp), in the calling
+// thread.
 std::shared_ptr<const model::SpotIntegralCache> spot_cache_for_rows(const Dataset& data,
                                                                     const FitSettings& s,
                                                                     int threads,

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "identify/row_predictions.hpp"
-#include "identify/table_progress_check.hpp"
+#include "identify/observer_progress.hpp"
 
 namespace frictionid {
 

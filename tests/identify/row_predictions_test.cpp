@@ -13,6 +13,8 @@
 #include <frictionid/fit_error.hpp>
 #include <frictionid/model/contact_spot.hpp>
 
+#include "identify/observer_progress.hpp"
+
 namespace frictionid::row_predictions_test {
 namespace {
 
@@ -119,7 +121,7 @@ TEST(RowPredictions, TheObserverHearsTheRowsEveryStepFromTheCallingThreadOnly) {
   predict_rows(model, 50000, row, ignore, 2, &two);
   EXPECT_TRUE(two.same_thread);
   for (std::size_t k = 1; k < two.done.size(); ++k)
-    EXPECT_GE(two.done[k] - two.done[k - 1], kModelRowsStep) << k;
+    EXPECT_GE(two.done[k] - two.done[k - 1], kRowsStep) << k;
 }
 
 TEST(RowPredictions, AnObserverThatCancelsEndsThePassWithInterrupted) {

@@ -1,4 +1,4 @@
-#include "identify/table_progress_check.hpp"
+#include "identify/observer_progress.hpp"
 
 #include <atomic>
 #include <memory>
@@ -28,6 +28,21 @@ std::function<bool()> table_progress_check(FitObserver* observer, long budget) {
     }
     return observer != nullptr && observer->cancelled();
   };
+}
+
+RowsProgress::RowsProgress(FitObserver* observer, FitStage stage, long total)
+    : observer_(observer), stage_(stage), total_(total) {}
+
+void RowsProgress::at() {
+  if (!observer_ || std::this_thread::get_id() != caller_) return;
+  const long now = done_.load(std::memory_order_relaxed);
+  if (now - shown_ < kRowsStep) return;
+  shown_ = now;
+  FitProgress p;
+  p.stage = stage_;
+  p.done = now;
+  p.total = total_;
+  observer_->on_progress(p);
 }
 
 model::ContactSpot observed_spot_for_rows(ModelKind kind, const model::PressureLaw<double>& law,
