@@ -22,7 +22,7 @@
 //   # --maps: only the two maps' rows of the first table;
 //   # --table-law-aspects: only the builds of table laws of 41 and 201 samples on ellipses of
 //   # aspect 0.1 to 4 (one build each, one thread);
-//   # --map-sizes: only the builds of random maps of 8 x 8 to 30 x 30 samples (one each, one
+//   # --map-sizes: only the builds of random maps of 8 x 8 to 44 x 44 samples (one each, one
 //   # thread)
 #include <algorithm>
 #include <array>
@@ -271,7 +271,7 @@ void table_law_aspects() {
 void map_sizes() {
   std::printf("| random map | build, 1 thread (CPU) | points | per point |\n");
   std::printf("|---|---:|---:|---:|\n");
-  for (int n : {8, 15, 20, 30}) {
+  for (int n : {8, 15, 20, 30, 44}) {
     const double c0 = process_cpu();
     const SpotIntegralTable table(ContactSpot::pressure_map(random_map(n)),
                                   PressureLaw<double>::uniform(), 1.0, {}, 1);

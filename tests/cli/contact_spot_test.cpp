@@ -271,7 +271,7 @@ TEST(ContactSpotCli, AFitOnAMapNamesItAndFingerprintsItsFile) {
 }
 
 // Before the search a fit on a map computes its rows' integrals (~7 us a row on the footprint,
-// ~75 us on a rough 30 x 30 grid): --progress shows the rows done on its line, then the search;
+// ~40 us on a rough 30 x 30 grid): --progress shows the rows done on its line, then the search;
 // the report is the one written without it.
 TEST(ContactSpotCli, AFitOnAMapShowsItsRowsIntegralsOnTheProgressLine) {
   const ScratchDir dir("contact_" + test_name());

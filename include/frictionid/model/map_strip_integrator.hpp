@@ -21,7 +21,9 @@
 // takes the number of points that its Bernstein ellipse asks for 1e-16. A cell more than
 // kFarCells of its sides from c has an analytic integrand: a product Gauss–Legendre rule takes
 // it, 7 x 7 points at 3 sides, 6 x 6 at 5 to 9 (the closed forms' terms would cancel there,
-// growing like the square of the distance, and their strips cost more).
+// growing like the square of the distance, and their strips cost more). Blocks of 4 x 4 cells and
+// more at least their side from c and clear of the window take one rule each instead
+// (map_block_rules.hpp): a point then costs the log of the cells, not the cells.
 // Cells whose four samples are zero are skipped.
 #pragma once
 
@@ -33,6 +35,7 @@
 
 #include <frictionid/model/contact_spot.hpp>
 #include <frictionid/model/gauss_legendre_rule.hpp>
+#include <frictionid/model/map_block_rules.hpp>
 #include <frictionid/model/map_corner_sums.hpp>
 #include <frictionid/model/spot_integrals.hpp>
 #include <frictionid/model/tanh_sinh_rule.hpp>
@@ -42,7 +45,7 @@ namespace frictionid::model {
 class MapStripIntegrator {
  public:
   explicit MapStripIntegrator(const PressureMap& map)
-      : x_(map.x), y_(map.y), index_((map.nx() - 1) * (map.ny() - 1), -1) {
+      : x_(map.x), y_(map.y), index_((map.nx() - 1) * (map.ny() - 1), -1), blocks_(map) {
     for (std::size_t j = 0; j + 1 < map.ny(); ++j)
       for (std::size_t i = 0; i + 1 < map.nx(); ++i) {
         Cell c{x_[i],
@@ -73,14 +76,11 @@ class MapStripIntegrator {
   }
 
   // The integrals for the centre of rotation at physical (cx, cy), units of R.
-  SpotIntegrals operator()(double cx, double cy) const {
-    double acc[12] = {};
-    const Window w = window(cx, cy);
-    if (w.i1 > w.i0) corner_sums(cx, cy, w, acc);
-    for (const Cell& c : cells_)
-      if (!w.holds(c.i, c.j)) cell(c, cx, cy, acc);
-    return SpotIntegrals::from_channels(acc);
-  }
+  SpotIntegrals operator()(double cx, double cy) const { return integrate(cx, cy, true); }
+
+  // The same with every cell outside the window by its own rule (the reference for the blocks'
+  // tests).
+  SpotIntegrals without_blocks(double cx, double cy) const { return integrate(cx, cy, false); }
 
   // The nodes of the grid cells [i0, i1) x [j0, j1) (those with a nonzero sample), with sigma0
   // about each summed over its cells among them: their corner sums (MapCornerMoments) are those
@@ -106,6 +106,36 @@ class MapStripIntegrator {
   }
 
  private:
+  SpotIntegrals integrate(double cx, double cy, bool blocks) const {
+    double acc[12] = {};
+    const Window w = window(cx, cy);
+    if (w.i1 > w.i0) corner_sums(cx, cy, w, acc);
+    if (!blocks || !blocks_.any()) {
+      for (const Cell& c : cells_)
+        if (!w.holds(c.i, c.j)) cell(c, cx, cy, acc);
+      return SpotIntegrals::from_channels(acc);
+    }
+    // The blocks far from c by their rules, the other cells by theirs, in the same order as
+    // without blocks; the blocks' sums added last.
+    thread_local std::vector<int> leaves;
+    leaves.clear();
+    const std::size_t nx = x_.size() - 1;
+    double far[12] = {};
+    blocks_.sum(
+        cx, cy,
+        [&w](std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1) {
+          return w.touches(i0, i1, j0, j1);
+        },
+        [&](std::size_t i, std::size_t j) {
+          if (!w.holds(i, j)) leaves.push_back(index_[j * nx + i]);
+        },
+        far);
+    std::sort(leaves.begin(), leaves.end());
+    for (int k : leaves) cell(cells_[static_cast<std::size_t>(k)], cx, cy, acc);
+    for (std::size_t k = 0; k < 12; ++k) acc[k] += far[k];
+    return SpotIntegrals::from_channels(acc);
+  }
+
   struct Corner {
     double alpha, beta, gamma, delta;  // sigma0 about the corner, times its sign (MapCornerNode)
   };
@@ -132,6 +162,15 @@ class MapStripIntegrator {
     std::size_t i0 = 0, i1 = 0, j0 = 0, j1 = 0;  // the bounding box of its cells
     bool holds(std::size_t i, std::size_t j) const {
       return i >= i0 && i < i1 && j >= j0 && j < j1 && fx[i] + fy[j] <= kReach * kReach;
+    }
+    // Whether any of the cells [i0, i1) x [j0, j1) is the window's.
+    bool touches(std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1) const {
+      if (fx.empty()) return false;
+      const double mx = *std::min_element(fx.begin() + static_cast<std::ptrdiff_t>(i0),
+                                          fx.begin() + static_cast<std::ptrdiff_t>(i1));
+      const double my = *std::min_element(fy.begin() + static_cast<std::ptrdiff_t>(j0),
+                                          fy.begin() + static_cast<std::ptrdiff_t>(j1));
+      return mx + my <= kReach * kReach;
     }
     std::size_t cells() const {
       std::size_t n = 0;
@@ -419,6 +458,7 @@ class MapStripIntegrator {
   std::vector<double> x_, y_;
   std::vector<int> index_;  // of each grid cell (j (nx - 1) + i) in cells_, -1 for a zero cell
   std::vector<Cell> cells_;
+  MapBlockRules blocks_;  // the far cells in blocks (map_block_rules.hpp)
 };
 
 }  // namespace frictionid::model
