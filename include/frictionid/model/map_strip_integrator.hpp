@@ -29,8 +29,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
+#include <memory>
+#include <mutex>
+#include <optional>
 #include <vector>
 
 #include <frictionid/model/contact_spot.hpp>
@@ -45,7 +49,10 @@ namespace frictionid::model {
 class MapStripIntegrator {
  public:
   explicit MapStripIntegrator(const PressureMap& map)
-      : x_(map.x), y_(map.y), index_((map.nx() - 1) * (map.ny() - 1), -1), blocks_(map) {
+      : x_(map.x),
+        y_(map.y),
+        index_((map.nx() - 1) * (map.ny() - 1), -1),
+        blocks_(std::make_shared<LazyBlocks>(map)) {
     for (std::size_t j = 0; j + 1 < map.ny(); ++j)
       for (std::size_t i = 0; i + 1 < map.nx(); ++i) {
         Cell c{x_[i],
@@ -95,6 +102,9 @@ class MapStripIntegrator {
     return out;
   }
 
+  // Whether the far cells' blocks are set up (at the first point that asks for them).
+  bool blocks_set_up() const { return blocks_->ready(); }
+
   // How many grid cells around c the corner sums take (0: none, every cell by itself).
   std::size_t window_cells(double cx, double cy) const { return window(cx, cy).cells(); }
 
@@ -110,7 +120,8 @@ class MapStripIntegrator {
     double acc[12] = {};
     const Window w = window(cx, cy);
     if (w.i1 > w.i0) corner_sums(cx, cy, w, acc);
-    if (!blocks || !blocks_.any()) {
+    const MapBlockRules* rules = blocks ? &blocks_->get() : nullptr;
+    if (!rules || !rules->any()) {
       for (const Cell& c : cells_)
         if (!w.holds(c.i, c.j)) cell(c, cx, cy, acc);
       return SpotIntegrals::from_channels(acc);
@@ -121,7 +132,7 @@ class MapStripIntegrator {
     leaves.clear();
     const std::size_t nx = x_.size() - 1;
     double far[12] = {};
-    blocks_.sum(
+    rules->sum(
         cx, cy,
         [&w](std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1) {
           return w.touches(i0, i1, j0, j1);
@@ -458,7 +469,30 @@ class MapStripIntegrator {
   std::vector<double> x_, y_;
   std::vector<int> index_;  // of each grid cell (j (nx - 1) + i) in cells_, -1 for a zero cell
   std::vector<Cell> cells_;
-  MapBlockRules blocks_;  // the far cells in blocks (map_block_rules.hpp)
+
+  // The far cells' blocks, set up at the first point that asks (0.015 s for 30 x 30 cells, 0.17 s
+  // for 100 x 100): a fit makes an integrator at every pass and reads its rows from a cache.
+  class LazyBlocks {
+   public:
+    explicit LazyBlocks(const PressureMap& map) : map_(map) {}
+    const MapBlockRules& get() {
+      std::call_once(once_, [this] {
+        rules_.emplace(map_);
+        map_ = PressureMap{};
+        done_ = true;
+      });
+      return *rules_;
+    }
+
+    bool ready() const { return done_.load(); }
+
+   private:
+    std::atomic<bool> done_{false};
+    std::once_flag once_;
+    PressureMap map_;  // until the blocks are set up
+    std::optional<MapBlockRules> rules_;
+  };
+  std::shared_ptr<LazyBlocks> blocks_;
 };
 
 }  // namespace frictionid::model
