@@ -99,9 +99,9 @@ std::shared_ptr<const model::PressureMap> load_pressure_map(const std::string& p
     if (samples.size() == kMaxPressureMapSamples)
       throw InputError(path, lineno, 0,
                        "more than " + std::to_string(kMaxPressureMapSamples) +
-                           " samples: the exact model integrates along rays through every cell, "
-                           "so its cost per row grows with the grid; resample the map (a few "
-                           "thousand samples resolve a footprint)");
+                           " samples: a map's table and each row's integral grow with its "
+                           "cells; resample the map (a few thousand samples resolve a "
+                           "footprint)");
     samples.push_back({value[0], value[1], value[2], lineno});
   }
   if (header_line == 0) throw InputError(path, 0, 0, "the pressure map is empty");

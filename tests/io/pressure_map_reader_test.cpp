@@ -119,6 +119,16 @@ TEST(PressureMapReader, ANonFiniteValueIsNamedAtItsField) {
   }
 }
 
+TEST(PressureMapReader, MoreThanTenThousandSamplesIsRefusedAtTheFirstOneTooMany) {
+  std::string text = "x,y,sigma0\n";
+  for (int j = 0; j < 101; ++j)
+    for (int i = 0; i < 100; ++i) text += std::to_string(i) + "," + std::to_string(j) + ",1\n";
+  const InputError e = error_of(text);
+  EXPECT_EQ(e.line(), 10002u);  // the header, then 10,000 samples
+  EXPECT_TRUE(says(e, "more than 10000 samples")) << e.what();
+  EXPECT_TRUE(says(e, "resample the map")) << e.what();
+}
+
 TEST(PressureMapReader, FewerThanTwoByTwoSamplesIsRefused) {
   const InputError one_y = error_of("x,y,sigma0\n0,0,1\n1,0,1\n2,0,1\n");
   EXPECT_EQ(one_y.line(), 4u);
