@@ -10,8 +10,8 @@
 #include <frictionid/io/dataset_writer.hpp>
 #include <frictionid/io/input_error.hpp>
 #include "app/option_parsers.hpp"
-#include "identify/row_predictions.hpp"
 #include "identify/observer_progress.hpp"
+#include "identify/row_predictions.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv_cell.hpp"
 

@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "identify/row_predictions.hpp"
 #include "identify/observer_progress.hpp"
+#include "identify/row_predictions.hpp"
 
 namespace frictionid {
 
