@@ -133,5 +133,77 @@ TEST(EllipseLawIntegrator, ATableOfManySamplesByTheProductRuleMatchesGaussLegend
             << worst << "\n";
 }
 
+// A table's build takes a table law's slopes by the ray's stretches through the uniform table's
+// pieces, whose weights it finds once per reference radius (slopes_by_stretches), where the
+// readings of the other path integrate the same interpolant of U: the two agree to rounding.
+// Rim exponents 0 (kinks and a step), 0.44 and 0.7 (fractional: the rim piece by readings) and
+// 1, 6 to 41 samples, aspects 0.1 to 4 on the polar tables that a build reads; the centres
+// above, centres whose reference radius is a sample, the rim or 1e-9, and each centre a second
+// time, from the stretches' weights found the first.
+TEST(EllipseLawIntegrator, ATableLawByStretchesMatchesItsReadings) {
+  namespace sc = testing::spot_cases;
+  std::vector<NamedLaw> tables = {{"kinks and a step", sc::kinked_step_table().law},
+                                  {"41 samples, edge exponent 0.44", sc::sampled_table(41, 0.5)},
+                                  {"11 samples, edge exponent 1", sc::sampled_table(11, 1.0)}};
+  tables.push_back(laws().back());  // 7 samples, edge exponent 0.7
+  double worst = 0.0;
+  for (double q : {0.1, 0.3, 0.7, 4.0}) {
+    const auto uniform = SpotIntegralTable::uniform_for_layers(q, {}, spot_threads(0));
+    for (const NamedLaw& l : tables) {
+      const EllipseLawIntegrator<SpotIntegralTable> readings(uniform, l.law, q),
+          stretches(uniform, l.law, q, false, true);
+      ASSERT_TRUE(stretches.takes_stretches()) << l.name;
+      const double A0 = spot_moments(ContactSpot::ellipse(q), law_moments(l.law), q).A0;
+      std::vector<std::array<double, 2>> at = centres(q, 0x57e7c + static_cast<std::uint64_t>(q));
+      Uniform u(0x5a3);
+      for (double P : {0.3, 0.55, 0.8, 0.975, 1.0, 1.0 - 1e-12, 1.0 + 1e-12, 1e-9, 0.65, 1.35}) {
+        const double t = u.in(-kPi, kPi);
+        at.push_back({P * std::cos(t), q * P * std::sin(t)});
+      }
+      for (int pass = 0; pass < 2; ++pass)
+        for (const auto& c : at) {
+          const auto got = stretches(c[0], c[1]).channels();
+          const auto want = readings(c[0], c[1]).channels();
+          for (std::size_t k = 0; k < 12; ++k) {
+            const double e = std::fabs(got[k] - want[k]) / A0;
+            worst = std::max(worst, e);
+            EXPECT_LT(e, 1e-12) << l.name << ", q " << q << ", pass " << pass << ", channel " << k
+                                << " at (" << c[0] << ", " << c[1] << ")";
+          }
+        }
+      EXPECT_GT(stretches.stretches_found(), 0u) << l.name;
+    }
+  }
+  std::cout << "[ worst    ] stretches vs readings, any channel / A0: " << worst << "\n";
+}
+
+// The weights found once serve every later point that shares them, bit for bit: the same
+// centres in the opposite order through a second integrator give the same channels.
+TEST(EllipseLawIntegrator, AStretchsWeightsDoNotDependOnWhichPointFoundThemFirst) {
+  const double q = 0.3;
+  const auto uniform = SpotIntegralTable::uniform_for_layers(q, {}, spot_threads(0));
+  const PressureLaw<double> law = testing::spot_cases::sampled_table(41, 0.5);
+  const EllipseLawIntegrator<SpotIntegralTable> forward(uniform, law, q, false, true),
+      backward(uniform, law, q, false, true);
+  std::vector<std::array<double, 2>> at;
+  for (double P : {0.2, 0.5, 0.9}) {  // each radius at several angles: the stretches repeat
+    for (int i = 0; i < 7; ++i) {
+      const double t = 0.2 * i;
+      at.push_back({P * std::cos(t), q * P * std::sin(t)});
+    }
+  }
+  std::vector<std::array<double, 12>> first;
+  std::size_t one_ray = 0;  // the stretches of the first point
+  for (const auto& c : at) {
+    first.push_back(forward(c[0], c[1]).channels());
+    if (one_ray == 0) one_ray = forward.stretches_found();
+  }
+  for (std::size_t i = at.size(); i-- > 0;) {
+    const auto again = backward(at[i][0], at[i][1]).channels();
+    for (std::size_t k = 0; k < 12; ++k) EXPECT_EQ(again[k], first[i][k]) << i << ", " << k;
+  }
+  EXPECT_LT(forward.stretches_found(), at.size() * one_ray);  // the points shared some
+}
+
 }  // namespace
 }  // namespace frictionid::model::ellipse_law_integrator_test

@@ -69,9 +69,10 @@
 //
 // The points. Ellipse: SpotIntegrator, whose rays are closed forms under the power laws (uniform,
 // Hertz, parabolic, power:n: 6-20 us a point); under a table law, layers of the uniform ellipse
-// (ellipse_law_integrator.hpp) from that ellipse's own table, built first (30-75 us a point for
-// 41 samples; from 64 a product rule whose readings do not grow with them; the table then takes
-// 9,000-49,000 points, every sample a line its cells resolve, below 64 samples a boundary of
+// (ellipse_law_integrator.hpp) from that ellipse's own table, built first (below 64 samples by
+// the rays' stretches through its pieces, whose weights the points that share a reference radius
+// share: Ray::stretches; from 64 a product rule whose readings do not grow with them; the table
+// takes 9,000-49,000 points, every sample a line its cells resolve, below 64 samples a boundary of
 // them). An annulus has no
 // points of its own: it is the uniform ellipse less the one scaled by its inner radius, two
 // readings of the uniform table (built to a tolerance tightened by (1 - B^2)/(1 + B^2), the
@@ -262,7 +263,7 @@ class SpotIntegralTable {
     if (kind_ == SpotKind::Ellipse && law.kind == PressureKind::Table) {
       auto uniform = uniform_for_layers(q_, stop, parallel);
       stats_.layer_points = uniform->stats().points;
-      layers.emplace(std::move(uniform), law, q_);
+      layers.emplace(std::move(uniform), law, q_, false, true);
     }
     Builder{*this, integrate, strips,     map_strips, layers ? &*layers : nullptr,
             stop,  parallel,  max_points, {}}
@@ -297,6 +298,47 @@ class SpotIntegralTable {
     return v;
   }
 
+ private:
+  // One coordinate of a root cell: s in [-1, 1] to the patch coordinate u in [lo, hi], linear or
+  // graded towards a singular line at hi, u = hi - (hi - lo) ((1 - s)/2)^power (at lo: mirrored).
+  struct Axis {
+    double lo = 0.0, hi = 1.0;
+    int power = 1;  // 1: linear
+    bool towards_hi = true;
+
+    double at(double s) const {
+      if (s == -1.0) return lo;
+      if (s == 1.0) return hi;
+      if (power == 1) return lo + (hi - lo) * 0.5 * (s + 1.0);
+      if (towards_hi) return hi - (hi - lo) * std::pow(0.5 * (1.0 - s), power);
+      return lo + (hi - lo) * std::pow(0.5 * (1.0 + s), power);
+    }
+    double slope(double s) const {  // du/ds
+      if (power == 1) return 0.5 * (hi - lo);
+      const double a = 0.5 * (towards_hi ? 1.0 - s : 1.0 + s);
+      double p = 1.0;
+      for (int k = 1; k < power; ++k) p *= a;
+      return 0.5 * power * (hi - lo) * p;
+    }
+    template <typename E>
+    E s_of(const E& u) const {
+      if (power == 1) return std::clamp(E(2.0 * (u - lo) / (hi - lo) - 1.0), E(-1.0), E(1.0));
+      if (towards_hi) return 1.0 - 2.0 * root(std::clamp(E((hi - u) / (hi - lo)), E(0.0), E(1.0)));
+      return 2.0 * root(std::clamp(E((u - lo) / (hi - lo)), E(0.0), E(1.0))) - 1.0;
+    }
+    template <typename E>
+    E root(const E& x) const {
+      using std::cbrt;
+      using std::pow;
+      using std::sqrt;
+      if (power == 3) return cbrt(x);
+      if (power == 4) return sqrt(sqrt(x));
+      if (power == 6) return sqrt(cbrt(x));
+      return pow(x, 1.0 / power);
+    }
+  };
+
+ public:
   // Readings along the ray c/s, s > 0, from one centre c: a table law's layers read the uniform
   // ellipse at c/s for 250-650 values of s (ellipse_law_integrator.hpp). On an ellipse's table
   // the angular coordinate of both patches (the reference angle of the polar patch, the
@@ -350,6 +392,48 @@ class SpotIntegralTable {
         W[kWeightRow + k] += w3 * tx[k];
         W[2 * kWeightRow + k] += w4 * tx[k];
       }
+    }
+
+    // The ray by stretches (a table law's build, EllipseLawIntegrator): the part of the ray c/s,
+    // s in (0, 1], that one piece holds. There U is a Chebyshev series in the piece's radial
+    // coordinate x whose coefficients depend on the angle alone, and the radial coordinate u of
+    // the patch is P/s on the polar patch (P the reference radius of c) and s/|c| on the far
+    // one: so the weights of a layer integral over the stretch, W_k = ∫ w(s) s^(2+d) T_k(x) ds,
+    // depend on the ray only through P or |c|, not its angle.
+    struct Stretch {
+      int leaf;
+      double s1;          // the angular coordinate in the piece's root cell
+      bool far;           // on the far patch: u = s/|c|, else u = P/s
+      Axis axis;          // the root cell's radial coordinate
+      double a0, b0;      // the piece's side in it
+      int n0;             // the piece's radial degree
+      double u_lo, u_hi;  // the stretch, in u
+      // u at the piece's coordinate x in [-1, 1], and du/dx.
+      double u_at(double x, double& du_dx) const {
+        const double h = 0.5 * (b0 - a0), sigma = a0 + h * (x + 1.0);
+        du_dx = axis.slope(sigma) * h;
+        return axis.at(sigma);
+      }
+      double x_of(double u) const { return leaf_coordinate(a0, b0, axis.s_of(u)); }
+    };
+
+    // The stretches of the ray over s in (0, 1] in order of increasing u, or false where the
+    // ray is not read by pieces (a map or rectangle, the confocal patch, c = 0).
+    bool stretches(std::vector<Stretch>& out) const {
+      out.clear();
+      if (!t_->ray_by_slices() || centre_ || t_->confocal_) return false;
+      // The polar patch for u = P/s in [P, P_near], the far one for s < P/P_near.
+      if (P_ <= t_->near_) along(0, P_, t_->near_, out);
+      if (r_ < HUGE_VAL) along(1, 0.0, std::min(1.0, P_ / t_->near_) / r_, out);
+      return true;
+    }
+    double reference_radius() const { return P_; }
+    double radius() const { return r_; }
+
+    // Adds the weights W (three rows of kWeightRow, as add() sums them) to piece `leaf` at s1.
+    void add_weights(int leaf, double s1, const double* W) const {
+      double* to = weights(leaf, s1);
+      for (int k = 0; k < 3 * kWeightRow; ++k) to[k] += W[k];
     }
 
     void add_to(double* acc) const {
@@ -419,6 +503,40 @@ class SpotIntegralTable {
             node->child[(node->dir == 0 ? s0 : s1) >= node->mid])];
       index = last_leaf_ = node->leaf;
       return true;
+    }
+
+    // The stretches of patch `patch` for u in [lo, hi], at the ray's angle.
+    void along(std::size_t patch, double lo, double hi, std::vector<Stretch>& out) const {
+      if (!(hi > lo)) return;
+      const Patch& g = t_->patches_[patch];
+      const double u1 = u1_[patch];
+      const std::size_t i1 = locate(g.breaks1, u1), columns = g.breaks1.size() - 1;
+      for (std::size_t i0 = locate(g.breaks0, lo); i0 + 1 < g.breaks0.size(); ++i0) {
+        if (g.breaks0[i0] >= hi) break;
+        const int r = g.roots[i0 * columns + i1];
+        if (r < 0) continue;
+        const Root& root = t_->roots_[static_cast<std::size_t>(r)];
+        const double s1 = root.a1.s_of(u1);
+        const double ulo = std::max(lo, g.breaks0[i0]), uhi = std::min(hi, g.breaks0[i0 + 1]);
+        if (!(uhi > ulo)) continue;
+        collect(root.tree, root.a0, root.a0.s_of(ulo), root.a0.s_of(uhi), s1, patch == 1, ulo, uhi,
+                out);
+      }
+    }
+    // The pieces of the subtree at `node` over [x0, x1] in the root's radial coordinate, at s1.
+    void collect(int node, const Axis& axis, double x0, double x1, double s1, bool far, double ulo,
+                 double uhi, std::vector<Stretch>& out) const {
+      const TreeNode& n = t_->tree_[static_cast<std::size_t>(node)];
+      if (n.dir == 1) {
+        collect(n.child[s1 >= n.mid], axis, x0, x1, s1, far, ulo, uhi, out);
+      } else if (n.dir == 0) {
+        if (x0 < n.mid) collect(n.child[0], axis, x0, x1, s1, far, ulo, uhi, out);
+        if (x1 > n.mid) collect(n.child[1], axis, x0, x1, s1, far, ulo, uhi, out);
+      } else {
+        const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(n.leaf)];
+        const double lo = std::max(ulo, axis.at(leaf.a0)), hi = std::min(uhi, axis.at(leaf.b0));
+        if (hi > lo) out.push_back({n.leaf, s1, far, axis, leaf.a0, leaf.b0, leaf.n0, lo, hi});
+      }
     }
 
     // The coordinate in [-1, 1] of s0 on the piece's side [a0, b0] (root cell coordinates).
@@ -559,38 +677,6 @@ class SpotIntegralTable {
   // --- The table --------------------------------------------------------------------------------
 
   enum class Coords { Polar, Box, Corner, Far, Confocal };
-
-  // One coordinate of a root cell: s in [-1, 1] to the patch coordinate u in [lo, hi], linear or
-  // graded towards a singular line at hi, u = hi - (hi - lo) ((1 - s)/2)^power (at lo: mirrored).
-  struct Axis {
-    double lo = 0.0, hi = 1.0;
-    int power = 1;  // 1: linear
-    bool towards_hi = true;
-
-    double at(double s) const {
-      if (s == -1.0) return lo;
-      if (s == 1.0) return hi;
-      if (power == 1) return lo + (hi - lo) * 0.5 * (s + 1.0);
-      if (towards_hi) return hi - (hi - lo) * std::pow(0.5 * (1.0 - s), power);
-      return lo + (hi - lo) * std::pow(0.5 * (1.0 + s), power);
-    }
-    template <typename E>
-    E s_of(const E& u) const {
-      if (power == 1) return std::clamp(E(2.0 * (u - lo) / (hi - lo) - 1.0), E(-1.0), E(1.0));
-      if (towards_hi) return 1.0 - 2.0 * root(std::clamp(E((hi - u) / (hi - lo)), E(0.0), E(1.0)));
-      return 2.0 * root(std::clamp(E((u - lo) / (hi - lo)), E(0.0), E(1.0))) - 1.0;
-    }
-    template <typename E>
-    E root(const E& x) const {
-      using std::cbrt;
-      using std::pow;
-      using std::sqrt;
-      if (power == 3) return cbrt(x);
-      if (power == 4) return sqrt(sqrt(x));
-      if (power == 6) return sqrt(cbrt(x));
-      return pow(x, 1.0 / power);
-    }
-  };
 
   struct Root {
     int patch;
