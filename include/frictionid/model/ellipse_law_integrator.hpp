@@ -215,12 +215,11 @@ class EllipseLawIntegrator {
 
   // The slopes' integral ∫ (-L'(s)) s^(2+d) U(c/s) ds over s in (0, 1] stretch by stretch: U
   // is a Chebyshev series in each piece's radial coordinate x, so the integral is the piece's
-  // coefficients against W_k = ∫ (-L'(s)) s^(2+d) T_k(x(s)) ds over the stretch, found in x,
-  // where the root cells' coordinates are polynomials (graded cells too), and cut at the
-  // samples. The weights depend on P or |c| and the stretch, not on the ray's angle, and the
-  // points of a table share their P across its angular nodes: each stretch's weights are found
-  // once. Exact for the table's interpolant of U where the readings of slopes() integrate it
-  // to ~1e-12 A0.
+  // coefficients against W_k = ∫ (-L'(s)) s^(2+d) T_k(x(s)) ds over the stretch, cut at the
+  // samples (stretch_weights). The weights depend on P or |c| and the stretch, not on the ray's
+  // angle, and the points of a table share their P across its angular nodes: each stretch's
+  // weights are found once. Exact for the table's interpolant of U where the readings of
+  // slopes() integrate it to ~1e-12 A0.
   void slopes_by_stretches(const Ray& ray, const std::vector<Stretch>& stretches,
                            double s_cut) const {
     const double P = ray.reference_radius(), r = ray.radius();
