@@ -212,11 +212,17 @@ TEST_F(ReportFaults, EveryTrialLeavesTheOldOrTheNewCompleteReport) {
   int current = 0;
   int trials = 0, killed_before_swap = 0, killed_after_swap = 0;
 
-  // 1. SIGKILL at a random instant of a run.
+  // 1. SIGKILL at a random instant of a run, spread over 1.3 times the first run's time. Under
+  //    a parallel test's load the runs can take longer than the first one did, and then no kill
+  //    fell after the swap in 120 trials; a side that 10 trials have not reached widens (or
+  //    narrows) the spread by a quarter each trial until it is.
+  double spread = 1.3;
   for (int t = 0; t < 120; ++t, ++trials) {
+    if (t >= 10 && killed_after_swap == 0) spread *= 1.25;
+    if (t >= 10 && killed_before_swap == 0) spread /= 1.25;
     const int k = next++;
     const pid_t pid = start_fit(dir, k);
-    std::this_thread::sleep_for(std::chrono::duration<double>(1.3 * run_s * uniform(rng)));
+    std::this_thread::sleep_for(std::chrono::duration<double>(spread * run_s * uniform(rng)));
     ::kill(pid, SIGKILL);
     wait_exit(pid);
     const Seen seen = inspect(dir, next);
