@@ -203,6 +203,40 @@ TEST(EllipseLawIntegrator, AStretchsWeightsDoNotDependOnWhichPointFoundThemFirst
     for (std::size_t k = 0; k < 12; ++k) EXPECT_EQ(again[k], first[i][k]) << i << ", " << k;
   }
   EXPECT_LT(forward.stretches_found(), at.size() * one_ray);  // the points shared some
+  EXPECT_GT(forward.angle_rows_found(), 0u);
+}
+
+// A build's integrator sums each piece of the uniform table at a ray's angle once and keeps the
+// sums for later rays at that angle; a table of 201 samples (the product rule's readings, no
+// stretches) gives the channels of an integrator that sums every piece at every reading, to
+// rounding, and the same bits when its centres come in the opposite order.
+TEST(EllipseLawIntegrator, APiecesSumsAtAnAngleServeLaterRaysAtItAsTheReadingsWould) {
+  for (double q : {0.1, 0.7, 4.0}) {
+    const auto uniform = SpotIntegralTable::uniform_for_layers(q, {}, spot_threads(0));
+    const PressureLaw<double> law = testing::spot_cases::sampled_table(201, 0.5);
+    const EllipseLawIntegrator<SpotIntegralTable> each(uniform, law, q),
+        forward(uniform, law, q, false, true), backward(uniform, law, q, false, true);
+    ASSERT_TRUE(forward.uses_product_rule());
+    ASSERT_FALSE(forward.takes_stretches());
+    const double A0 = spot_moments(ContactSpot::ellipse(q), law_moments(law), q).A0;
+    std::vector<std::array<double, 2>> at;
+    for (double P : {0.05, 0.4, 0.93, 1.0, 1.2, 3.0})  // each angle at several radii
+      for (double t : {0.0, 0.3, 1.2, 1.5707963267948966, 2.5})
+        at.push_back({P * std::cos(t), q * P * std::sin(t)});
+    std::vector<std::array<double, 12>> first;
+    for (const auto& c : at) {
+      first.push_back(forward(c[0], c[1]).channels());
+      const auto want = each(c[0], c[1]).channels();
+      for (std::size_t k = 0; k < 12; ++k)
+        EXPECT_LT(std::fabs(first.back()[k] - want[k]), 1e-14 * A0)
+            << "q " << q << ", channel " << k << " at (" << c[0] << ", " << c[1] << ")";
+    }
+    for (std::size_t i = at.size(); i-- > 0;) {
+      const auto again = backward(at[i][0], at[i][1]).channels();
+      for (std::size_t k = 0; k < 12; ++k) EXPECT_EQ(again[k], first[i][k]) << i << ", " << k;
+    }
+    EXPECT_GT(forward.angle_rows_found(), 0u);
+  }
 }
 
 }  // namespace

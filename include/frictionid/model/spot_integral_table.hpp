@@ -71,7 +71,8 @@
 // Hertz, parabolic, power:n: 6-20 us a point); under a table law, layers of the uniform ellipse
 // (ellipse_law_integrator.hpp) from that ellipse's own table, built first (below 64 samples by
 // the rays' stretches through its pieces, whose weights the points that share a reference radius
-// share: Ray::stretches; from 64 a product rule whose readings do not grow with them; the table
+// share: Ray::stretches; from 64 a product rule whose readings do not grow with them; either way
+// the points that share an angle share each piece's sums at it, AngleRows; the table
 // takes 9,000-49,000 points, every sample a line its cells resolve, below 64 samples a boundary of
 // them). An annulus has no
 // points of its own: it is the uniform ellipse less the one scaled by its inner radius, two
@@ -109,6 +110,7 @@
 #include <utility>
 #include <vector>
 
+#include <frictionid/model/chebyshev_values.hpp>
 #include <frictionid/model/contact_spot.hpp>
 #include <frictionid/model/ellipse_law_integrator.hpp>
 #include <frictionid/model/gauss_legendre_rule.hpp>
@@ -339,6 +341,43 @@ class SpotIntegralTable {
   };
 
  public:
+  // The pieces of this table summed over their angular rows at one angular coordinate, for the
+  // rays of a table law's build (Ray::add_to, EllipseLawIntegrator): every point of an angular
+  // column of the build's cells reads this table along rays at the same angle, so each piece it
+  // passes is summed at that angle once, and a ray's weights then meet a radial series, n1 + 1
+  // times fewer products (sum_piece at every point took a tenth of a build). A piece's sums
+  // depend only on the piece and the angular coordinate, bit for bit, so the build does not
+  // depend on which point found them first. Shared by the threads.
+  class AngleRows {
+   public:
+    std::size_t size() const {
+      std::lock_guard<std::mutex> lock(mutex_);
+      return rows_.size();
+    }
+
+   private:
+    friend class SpotIntegralTable;
+    struct Key {
+      int leaf;
+      double s1;
+      bool operator==(const Key& o) const { return leaf == o.leaf && s1 == o.s1; }
+    };
+    struct KeyHash {
+      std::size_t operator()(const Key& k) const {
+        std::uint64_t b;
+        std::memcpy(&b, &k.s1, sizeof b);
+        std::uint64_t z = b ^ (static_cast<std::uint64_t>(k.leaf) * 0x9e3779b97f4a7c15ULL);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+        return static_cast<std::size_t>(z ^ (z >> 31));
+      }
+    };
+    // Cleared beyond this many (~30 MB at 17 x 12 coefficients each).
+    static constexpr std::size_t kMaxRows = 15000;
+    mutable std::mutex mutex_;
+    std::unordered_map<Key, std::shared_ptr<const std::vector<double>>, KeyHash> rows_;
+  };
+
   // Readings along the ray c/s, s > 0, from one centre c: a table law's layers read the uniform
   // ellipse at c/s for 250-650 values of s (ellipse_law_integrator.hpp). On an ellipse's table
   // the angular coordinate of both patches (the reference angle of the polar patch, the
@@ -356,7 +395,7 @@ class SpotIntegralTable {
       if (index < 0) return v;  // not on an ellipse's patches
       const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(index)];
       double tx[kStoreDegree + 1];
-      chebyshev(leaf_coordinate(leaf.a0, leaf.b0, s0), leaf.n0, tx);
+      chebyshev_values(leaf_coordinate(leaf.a0, leaf.b0, s0), leaf.n0, tx);
       sum_piece(index, s1, tx, tx, tx, v.data());
       for (int j = 0; j < kChannels; ++j)
         if ((fx_ && kOddX[j]) != (fy_ && kOddY[j])) v[j] = -v[j];
@@ -386,7 +425,7 @@ class SpotIntegralTable {
       const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(index)];
       double* W = weights(index, s1);
       double tx[kStoreDegree + 1];
-      chebyshev(leaf_coordinate(leaf.a0, leaf.b0, s0), leaf.n0, tx);
+      chebyshev_values(leaf_coordinate(leaf.a0, leaf.b0, s0), leaf.n0, tx);
       for (int k = 0; k <= leaf.n0; ++k) {
         W[k] += w2 * tx[k];
         W[kWeightRow + k] += w3 * tx[k];
@@ -406,7 +445,6 @@ class SpotIntegralTable {
       bool far;           // on the far patch: u = s/|c|, else u = P/s
       Axis axis;          // the root cell's radial coordinate
       double a0, b0;      // the piece's side in it
-      int n0;             // the piece's radial degree
       double u_lo, u_hi;  // the stretch, in u
       // u at the piece's coordinate x in [-1, 1], and du/dx.
       double u_at(double x, double& du_dx) const {
@@ -442,8 +480,47 @@ class SpotIntegralTable {
         const double* W = weights_.data() + v.offset;
         sum_piece(v.leaf, v.s1, W, W + kWeightRow, W + 2 * kWeightRow, out);
       }
-      for (int j = 0; j < kChannels; ++j)
-        acc[j] += ((fx_ && kOddX[j]) != (fy_ && kOddY[j]) ? -out[j] : out[j]) + direct_[j];
+      finish(out, acc);
+    }
+
+    // The same, each piece's coefficients first summed over its angular rows at the ray's
+    // angle and kept in `rows` (AngleRows), where later rays at that angle find them.
+    void add_to(double* acc, AngleRows& rows) const {
+      thread_local std::vector<std::shared_ptr<const std::vector<double>>> found;
+      const std::size_t n = visits_.size();
+      found.assign(n, nullptr);
+      {
+        std::lock_guard<std::mutex> lock(rows.mutex_);
+        for (std::size_t i = 0; i < n; ++i) {
+          const auto it = rows.rows_.find({visits_[i].leaf, visits_[i].s1});
+          if (it != rows.rows_.end()) found[i] = it->second;
+        }
+      }
+      bool added = false;
+      for (std::size_t i = 0; i < n; ++i)
+        if (!found[i]) {
+          found[i] = std::make_shared<const std::vector<double>>(
+              reduce_piece(visits_[i].leaf, visits_[i].s1));
+          added = true;
+        }
+      if (added) {
+        std::lock_guard<std::mutex> lock(rows.mutex_);
+        if (rows.rows_.size() > AngleRows::kMaxRows) rows.rows_.clear();
+        for (std::size_t i = 0; i < n; ++i)
+          rows.rows_.emplace(AngleRows::Key{visits_[i].leaf, visits_[i].s1}, found[i]);
+      }
+      double out[kChannels] = {};
+      for (std::size_t i = 0; i < n; ++i) {
+        const double* W = weights_.data() + visits_[i].offset;
+        const std::vector<double>& a = *found[i];
+        const std::size_t len = a.size() / kChannels;
+        for (std::size_t k = 0; k < len; ++k) {
+          const double w[3] = {W[k], W[kWeightRow + k], W[2 * kWeightRow + k]};
+          for (int j = 0; j < kChannels; ++j)
+            out[j] += w[SpotIntegrals::kChannelDegree[j]] * a[k * kChannels + j];
+        }
+      }
+      finish(out, acc);
     }
 
    private:
@@ -535,7 +612,7 @@ class SpotIntegralTable {
       } else {
         const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(n.leaf)];
         const double lo = std::max(ulo, axis.at(leaf.a0)), hi = std::min(uhi, axis.at(leaf.b0));
-        if (hi > lo) out.push_back({n.leaf, s1, far, axis, leaf.a0, leaf.b0, leaf.n0, lo, hi});
+        if (hi > lo) out.push_back({n.leaf, s1, far, axis, leaf.a0, leaf.b0, lo, hi});
       }
     }
 
@@ -561,13 +638,40 @@ class SpotIntegralTable {
       return weights_.data() + at;
     }
 
+    // The ray's sums, out, mirrored back to c's quadrant and added to acc with the readings
+    // taken by channels_at.
+    void finish(const double* out, double* acc) const {
+      for (int j = 0; j < kChannels; ++j)
+        acc[j] += ((fx_ && kOddX[j]) != (fy_ && kOddY[j]) ? -out[j] : out[j]) + direct_[j];
+    }
+
+    // Piece `index`'s coefficients summed against T_l(y) at angular coordinate s1: a radial
+    // series of every channel, a[k kChannels + j].
+    std::vector<double> reduce_piece(int index, double s1) const {
+      const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(index)];
+      int len = 0;
+      for (int l = 0; l <= leaf.n1; ++l)
+        len = std::max(len, leaf.row_len[static_cast<std::size_t>(l)]);
+      std::vector<double> a(static_cast<std::size_t>(len) * kChannels, 0.0);
+      double ty[kStoreDegree + 1];
+      chebyshev_values(leaf_coordinate(leaf.a1, leaf.b1, s1), leaf.n1, ty);
+      const double* c = t_->coeff_.data() + leaf.offset;
+      for (int l = 0; l <= leaf.n1; ++l) {
+        const int row = leaf.row_len[static_cast<std::size_t>(l)];
+        for (int k = 0; k < row; ++k, c += kChannels)
+          for (int j = 0; j < kChannels; ++j)
+            a[static_cast<std::size_t>(k * kChannels + j)] += ty[l] * c[j];
+      }
+      return a;
+    }
+
     // Adds to out piece `index`'s coefficients summed against T_l(y) at angular coordinate s1 and
     // radial weights for channels of degree 0, 1 and 2 (w0, w1, w2; T_k(x) for one reading).
     void sum_piece(int index, double s1, const double* w0, const double* w1, const double* w2,
                    double* out) const {
       const Leaf& leaf = t_->leaves_[static_cast<std::size_t>(index)];
       double ty[kStoreDegree + 1];
-      chebyshev(leaf_coordinate(leaf.a1, leaf.b1, s1), leaf.n1, ty);
+      chebyshev_values(leaf_coordinate(leaf.a1, leaf.b1, s1), leaf.n1, ty);
       const double* c = t_->coeff_.data() + leaf.offset;
       for (int l = 0; l <= leaf.n1; ++l) {
         const int len = leaf.row_len[static_cast<std::size_t>(l)];
@@ -833,8 +937,8 @@ class SpotIntegralTable {
     const E y =
         std::clamp(E((2.0 * s1 - leaf.a1 - leaf.b1) / (leaf.b1 - leaf.a1)), E(-1.0), E(1.0));
     E tx[kStoreDegree + 1], ty[kStoreDegree + 1];
-    chebyshev(x, leaf.n0, tx);
-    chebyshev(y, leaf.n1, ty);
+    chebyshev_values(x, leaf.n0, tx);
+    chebyshev_values(y, leaf.n1, ty);
     E acc[kChannels] = {};
     const double* c = coeff_.data() + leaf.offset;
     for (int l = 0; l <= leaf.n1; ++l) {
@@ -914,28 +1018,6 @@ class SpotIntegralTable {
   static std::size_t locate(const std::vector<double>& breaks, double u) {
     const auto it = std::upper_bound(breaks.begin() + 1, breaks.end() - 1, u);
     return static_cast<std::size_t>(it - breaks.begin()) - 1;
-  }
-
-  // T_0..T_n at x: the recurrence, its last two terms kept in registers, up to h = ceil(n/2),
-  // then T_(h+j) = 2 T_h T_j - T_(h-j), independent of each other. The recurrence alone, through
-  // the array, was one chain of n dependent steps with a store and a load in each: a sixth of
-  // a table law's build.
-  template <typename E>
-  static void chebyshev(const E& x, int n, E* t) {
-    t[0] = E(1.0);
-    if (n < 1) return;
-    t[1] = x;
-    const int h = (n + 1) / 2;
-    const E two_x = 2.0 * x;
-    E before = t[0], last = x;
-    for (int k = 2; k <= h; ++k) {
-      const E next = two_x * last - before;
-      t[k] = next;
-      before = last;
-      last = next;
-    }
-    const E twice = 2.0 * last;
-    for (int j = 1; h + j <= n; ++j) t[h + j] = twice * t[j] - t[h - j];
   }
 
   // --- Root cells -------------------------------------------------------------------------------
@@ -1291,7 +1373,7 @@ class SpotIntegralTable {
     std::vector<Values> rows(static_cast<std::size_t>((m0 + 1) * (s.n1 + 1)));
     std::vector<double> t(static_cast<std::size_t>(std::max(s.n0, s.n1) + 1));
     for (int i = 0; i <= m0; ++i) {
-      chebyshev(lerp(x0, x1, node(i, m0)), s.n0, t.data());
+      chebyshev_values(lerp(x0, x1, node(i, m0)), s.n0, t.data());
       for (int l = 0; l <= s.n1; ++l) {
         Values r{};
         for (int k = 0; k <= s.n0; ++k) {
@@ -1304,7 +1386,7 @@ class SpotIntegralTable {
     }
     std::vector<Values> out(static_cast<std::size_t>((m0 + 1) * (m1 + 1)));
     for (int j = 0; j <= m1; ++j) {
-      chebyshev(lerp(y0, y1, node(j, m1)), s.n1, t.data());
+      chebyshev_values(lerp(y0, y1, node(j, m1)), s.n1, t.data());
       for (int i = 0; i <= m0; ++i) {
         Values v{};
         for (int l = 0; l <= s.n1; ++l) {
@@ -1321,8 +1403,8 @@ class SpotIntegralTable {
   static Values sum(const Series& s, double x, double y) {
     std::vector<double> tx(static_cast<std::size_t>(s.n0 + 1)),
         ty(static_cast<std::size_t>(s.n1 + 1));
-    chebyshev(x, s.n0, tx.data());
-    chebyshev(y, s.n1, ty.data());
+    chebyshev_values(x, s.n0, tx.data());
+    chebyshev_values(y, s.n1, ty.data());
     Values v{};
     for (int l = 0; l <= s.n1; ++l)
       for (int k = 0; k <= s.n0; ++k)
