@@ -346,10 +346,11 @@ TEST(SpotIntegralTable, ATableLawOfFewSamplesOnAnEllipseHoldsItsLayers) {
   }
 }
 
-// The layers' uniform ellipse (polar beyond the rim down to aspect 0.05) is as exact as the
-// confocal one, and its rays read it at c/s beyond the rim too, by the slices of the polar patch.
+// The layers' uniform ellipse (polar beyond the rim down to aspect 0.05, its points read from a
+// tighter confocal table below 0.3) is as exact as the confocal one, and its rays read it at c/s
+// beyond the rim too, by the slices of the polar patch.
 TEST(SpotIntegralTable, TheLayersUniformEllipseIsExactAndItsRaysReadIt) {
-  for (double q : {0.1, 0.03}) {
+  for (double q : {0.2, 0.1, 0.03}) {
     const auto uniform = SpotIntegralTable::uniform_for_layers(q, {}, spot_threads(0));
     const ContactSpot spot = ContactSpot::ellipse(q);
     const PressureLaw<double> law = PressureLaw<double>::uniform();
