@@ -85,7 +85,8 @@ class EllipseLawIntegrator {
   // by_samples: a table law's s-range cut at every sample, each piece by Gauss–Legendre, however
   // many samples (a reference for the product rule, which takes tables of 64 samples or more).
   // for_a_build: a table's build, whose points share their reference radii and angles: a table
-  // law's slopes by the ray's stretches (slopes_by_stretches, below kProductSamples samples)
+  // law's slopes by the ray's stretches (slopes_by_stretches, below kProductSamples samples or
+  // on an elongated ellipse)
   // and the uniform table's pieces summed at each angle once (Uniform::AngleRows).
   EllipseLawIntegrator(std::shared_ptr<const Uniform> uniform, const PressureLaw<double>& law,
                        double q, bool by_samples = false, bool for_a_build = false)
@@ -124,9 +125,16 @@ class EllipseLawIntegrator {
     // when that power is a whole number.
     rim_smooth_ = gamma == 0.0 || rim_power_ * gamma == std::floor(rim_power_ * gamma);
     fractional_ = gamma != std::floor(gamma);
-    // (From kProductSamples on, the product rule's readings do not grow with the samples where
-    // the stretches' parts would: 201 samples took 20 % longer by stretches at aspect 0.7.)
-    if (for_a_build && table && !product_) stretch_cache_ = std::make_shared<StretchCache>();
+    // From kProductSamples on, the product rule's readings do not grow with the samples where
+    // the stretches' parts would: 201 samples took 20 % longer by stretches at aspect 0.7 and
+    // 1001 samples 1.4 times longer at 0.1. But on an elongated ellipse a point takes many
+    // readings, where rays cross the rim at a shallow angle all along: there the stretches pay
+    // up to kElongatedStretchSamples samples (201 samples at aspect 0.1 1.9 times faster, 401
+    // samples 1.3 times; at 0.2 and 0.3 alike).
+    const bool elongated = std::min(q, 1.0 / q) < kElongatedAspect;
+    if (for_a_build && table &&
+        (!product_ || (elongated && breaks_.size() - 2 <= kElongatedStretchSamples)))
+      stretch_cache_ = std::make_shared<StretchCache>();
     if (for_a_build && table) angle_rows_ = std::make_shared<typename Uniform::AngleRows>();
   }
 
@@ -134,7 +142,8 @@ class EllipseLawIntegrator {
   bool uses_product_rule() const { return product_; }
 
   // Whether its slopes go by the ray's stretches (for_a_build and fewer than kProductSamples
-  // samples), and how many stretches' weights it has found so far.
+  // samples, or kElongatedStretchSamples on an elongated ellipse), and how many stretches'
+  // weights it has found so far.
   bool takes_stretches() const { return stretch_cache_ != nullptr; }
   // How many pieces it has summed at an angle (for_a_build: kept for the later rays at it).
   std::size_t angle_rows_found() const { return angle_rows_ ? angle_rows_->size() : 0; }
@@ -182,6 +191,9 @@ class EllipseLawIntegrator {
   static constexpr double kLogProduct = 28.0;  // -ln of its interpolation's relative error
   // Fewer samples: Gauss–Legendre between them costs no more than the product rule's points.
   static constexpr std::size_t kProductSamples = 64;
+  // An ellipse more elongated than this takes a table law by stretches up to this many samples.
+  static constexpr double kElongatedAspect = 0.2;
+  static constexpr std::size_t kElongatedStretchSamples = 256;
 
   // U's readings along the ray c/s from one centre (SpotIntegralTable::Ray).
   using Ray = decltype(std::declval<const Uniform&>().ray(0.0, 0.0));
