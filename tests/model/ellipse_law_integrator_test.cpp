@@ -137,7 +137,14 @@ TEST(EllipseLawIntegrator, ATableOfManySamplesByTheProductRuleMatchesGaussLegend
 // pieces, whose weights it finds once per reference radius (slopes_by_stretches), where the
 // readings of the other path integrate the same interpolant of U: the two agree to rounding.
 // Rim exponents 0 (kinks and a step), 0.44 and 0.7 (fractional: the rim piece by readings) and
-// 1, 6 to 41 samples (and 201 on the elongated ellipse, where a build takes those by
+// A table of two samples, 1 at the centre and 0 at the rim, modulated: its one piece makes the
+// stretches' parts span whole pieces of the uniform table (12 points on each erred by 5e-10).
+PressureLaw<double> two_samples() {
+  return PressureLaw<double>::tabulated(std::make_shared<const PressureTable>(
+      std::vector<double>{0.0, 1.0}, std::vector<double>{1.0, 0.0}));
+}
+
+// 1, 2, 6 to 41 samples (and 201 on the elongated ellipse, where a build takes those by
 // stretches too), aspects 0.1 to 4 on the polar tables that a build reads; the centres
 // above, centres whose reference radius is a sample, the rim or 1e-9, and each centre a second
 // time, from the stretches' weights found the first.
@@ -145,7 +152,8 @@ TEST(EllipseLawIntegrator, ATableLawByStretchesMatchesItsReadings) {
   namespace sc = testing::spot_cases;
   std::vector<NamedLaw> tables = {{"kinks and a step", sc::kinked_step_table().law},
                                   {"41 samples, edge exponent 0.44", sc::sampled_table(41, 0.5)},
-                                  {"11 samples, edge exponent 1", sc::sampled_table(11, 1.0)}};
+                                  {"11 samples, edge exponent 1", sc::sampled_table(11, 1.0)},
+                                  {"2 samples: stretches span whole pieces", two_samples()}};
   tables.push_back(laws().back());  // 7 samples, edge exponent 0.7
   double worst = 0.0;
   for (double q : {0.1, 0.3, 0.7, 4.0}) {

@@ -330,8 +330,8 @@ class EllipseLawIntegrator {
 
   // Whether a part [sa, sb] of s is to be halved before its rule: on the polar patch x is a
   // function of u = P/s, whose pole s = 0 then keeps beyond the part's length (Bernstein
-  // parameter >= 3 + sqrt 8: 5.8^-24 of the rule's error); the law's (1 - s^2)^(gamma - 1) has
-  // a branch point at s = 1, kept twice the length away. Between them the integrand is the
+  // parameter >= 3 + sqrt 8: 5.8^-24 of the error of 12 points); the law's (1 - s^2)^(gamma - 1)
+  // has a branch point at s = 1, kept twice the length away. Between them the integrand is the
   // piece's polynomials (T_k of degree <= 16, the law's Q of degree 4) times powers of s.
   bool halve(const Stretch& t, double sa, double sb, int depth) const {
     if (depth >= kMaxStretchDepth) return false;
@@ -346,22 +346,24 @@ class EllipseLawIntegrator {
   };
 
   // The part [va, vb] of a variable v, s(v) monotone (at(v): its node), halved at mid(va, vb)
-  // until halve() lets it take kStretchNodes-point Gauss–Legendre in v. On a linear root cell v is
-  // s itself: nodes placed in s keep their relative precision where P is small (in x, whose -1 lies
-  // at u = 0, a part near x = -1 lost it). On a graded root cell (about the uniform rim u = 1) v is
-  // its coordinate x, where u is a polynomial (in s a cube root at the rim).
+  // until halve() lets it take Gauss–Legendre in v (kStretchNodes or kShortStretchNodes). On a
+  // linear root cell v is s itself: nodes placed in s keep their relative precision where P is
+  // small (in x, whose -1 lies at u = 0, a part near x = -1 lost it). On a graded root cell (about
+  // the uniform rim u = 1) v is its coordinate x, where u is a polynomial (in s a cube root at the
+  // rim).
   template <typename At, typename Mid>
   void in_parts(const Stretch& t, double va, double vb, const At& at, const Mid& mid,
                 const PolynomialPiece* piece, double* W, int depth) const {
-    const double sa = at(va).s, sb = at(vb).s;
-    if (halve(t, std::min(sa, sb), std::max(sa, sb), depth)) {
+    const PartNode a = at(va), b = at(vb);
+    if (halve(t, std::min(a.s, b.s), std::max(a.s, b.s), depth)) {
       const double vm = mid(va, vb);
       in_parts(t, va, vm, at, mid, piece, W, depth + 1);
       in_parts(t, vm, vb, at, mid, piece, W, depth + 1);
       return;
     }
     const double len = vb - va;
-    for (const QuadratureNode& g : gauss_legendre_rule(kStretchNodes)) {
+    const int points = std::fabs(b.x - a.x) <= kShortSpan ? kShortStretchNodes : kStretchNodes;
+    for (const QuadratureNode& g : gauss_legendre_rule(points)) {
       const PartNode n = at(va + len * g.from_left);
       add_powers(n.x, n.s, -g.weight * len * n.ds * slope(piece, n.s, 1.0 - n.s), W);
     }
@@ -630,9 +632,13 @@ class EllipseLawIntegrator {
   std::shared_ptr<StretchCache> stretch_cache_;              // for_a_build: the stretches' weights
   std::shared_ptr<typename Uniform::AngleRows> angle_rows_;  // and the pieces at each angle
   static constexpr int kMaxStretchDepth = 60;  // halvings of a part (geometric in s from P up)
-  // Gauss–Legendre points of a stretch's part: within 3e-15 A0 of 24 points over 300 centres
-  // at aspects 0.1, 0.7 and 4, rim exponents 0.5 and 1 (10 points: 2e-13, 16: 2e-15).
-  static constexpr int kStretchNodes = 12;
+  // Gauss–Legendre points of a stretch's part: 16, or 12 where the part spans no more than a
+  // quarter of its piece (kShortSpan in x), as between two of 41 samples. Within 8e-14 A0 of 28
+  // points at aspects 0.1-4, tables of 2-201 samples, rim exponents 0.3-1.5 (12 points on
+  // every part erred by 5e-10 on a table of 2 samples, whose parts span whole pieces).
+  static constexpr int kStretchNodes = 16;
+  static constexpr int kShortStretchNodes = 12;
+  static constexpr double kShortSpan = 0.5;
 };
 
 }  // namespace frictionid::model
