@@ -86,8 +86,8 @@ class EllipseLawIntegrator {
   // many samples (a reference for the product rule, which takes tables of 64 samples or more).
   // for_a_build: a table's build, whose points share their reference radii and angles: a table
   // law's slopes by the ray's stretches (slopes_by_stretches, below kProductSamples samples or
-  // on an elongated ellipse)
-  // and the uniform table's pieces summed at each angle once (Uniform::AngleRows).
+  // on an elongated ellipse) and the uniform table's pieces summed at each angle once
+  // (Uniform::AngleRows).
   EllipseLawIntegrator(std::shared_ptr<const Uniform> uniform, const PressureLaw<double>& law,
                        double q, bool by_samples = false, bool for_a_build = false)
       : uniform_(std::move(uniform)),
@@ -214,8 +214,9 @@ class EllipseLawIntegrator {
     std::size_t operator()(const StretchKey& k) const {
       std::uint64_t h = 0x9e3779b97f4a7c15ULL;
       for (double d : k.v) {
+        const double e = d + 0.0;  // -0 and +0 compare equal: one hash
         std::uint64_t b;
-        std::memcpy(&b, &d, sizeof b);
+        std::memcpy(&b, &e, sizeof b);
         h ^= b + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
       }
       return static_cast<std::size_t>(h);

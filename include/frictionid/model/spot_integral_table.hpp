@@ -373,8 +373,9 @@ class SpotIntegralTable {
     };
     struct KeyHash {
       std::size_t operator()(const Key& k) const {
+        const double s1 = k.s1 + 0.0;  // -0 and +0 compare equal: one hash
         std::uint64_t b;
-        std::memcpy(&b, &k.s1, sizeof b);
+        std::memcpy(&b, &s1, sizeof b);
         std::uint64_t z = b ^ (static_cast<std::uint64_t>(k.leaf) * 0x9e3779b97f4a7c15ULL);
         z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
         z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
