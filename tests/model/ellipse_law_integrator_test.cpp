@@ -133,17 +133,17 @@ TEST(EllipseLawIntegrator, ATableOfManySamplesByTheProductRuleMatchesGaussLegend
             << worst << "\n";
 }
 
-// A table's build takes a table law's slopes by the ray's stretches through the uniform table's
-// pieces, whose weights it finds once per reference radius (slopes_by_stretches), where the
-// readings of the other path integrate the same interpolant of U: the two agree to rounding.
-// Rim exponents 0 (kinks and a step), 0.44 and 0.7 (fractional: the rim piece by readings) and
-// A table of two samples, 1 at the centre and 0 at the rim, modulated: its one piece makes the
-// stretches' parts span whole pieces of the uniform table (12 points on each erred by 5e-10).
+// A table of two samples, 1 at the centre and 0 at the rim: its one piece makes the stretches'
+// parts span whole pieces of the uniform table (12 points on each erred by 5e-10 A0).
 PressureLaw<double> two_samples() {
   return PressureLaw<double>::tabulated(std::make_shared<const PressureTable>(
       std::vector<double>{0.0, 1.0}, std::vector<double>{1.0, 0.0}));
 }
 
+// A table's build takes a table law's slopes by the ray's stretches through the uniform table's
+// pieces, whose weights it finds once per reference radius (slopes_by_stretches), where the
+// readings of the other path integrate the same interpolant of U: the two agree to rounding.
+// Rim exponents 0 (kinks and a step), 0.44 and 0.7 (fractional: the rim piece by readings) and
 // 1, 2, 6 to 41 samples (and 201 on the elongated ellipse, where a build takes those by
 // stretches too), aspects 0.1 to 4 on the polar tables that a build reads; the centres
 // above, centres whose reference radius is a sample, the rim or 1e-9, and each centre a second
