@@ -62,8 +62,6 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
-#include <mutex>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -72,6 +70,7 @@
 #include <frictionid/model/gauss_legendre_rule.hpp>
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/model/product_rule.hpp>
+#include <frictionid/model/shared_memo.hpp>
 #include <frictionid/model/spot_integrals.hpp>
 #include <frictionid/model/tanh_sinh_rule.hpp>
 
@@ -147,11 +146,7 @@ class EllipseLawIntegrator {
   bool takes_stretches() const { return stretch_cache_ != nullptr; }
   // How many pieces it has summed at an angle (for_a_build: kept for the later rays at it).
   std::size_t angle_rows_found() const { return angle_rows_ ? angle_rows_->size() : 0; }
-  std::size_t stretches_found() const {
-    if (!stretch_cache_) return 0;
-    std::lock_guard<std::mutex> lock(stretch_cache_->mutex);
-    return stretch_cache_->weights.size();
-  }
+  std::size_t stretches_found() const { return stretch_cache_ ? stretch_cache_->size() : 0; }
 
   SpotIntegrals operator()(double cx, double cy) const {
     double acc[12] = {};
@@ -222,13 +217,9 @@ class EllipseLawIntegrator {
       return static_cast<std::size_t>(h);
     }
   };
-  struct StretchCache {
-    std::mutex mutex;
-    std::unordered_map<StretchKey, StretchWeights, StretchKeyHash> weights;
-  };
   // Cleared beyond this many (~30 MB): a build evaluates its points cell by cell, and the points
   // that share a P come close together (41 samples at aspect 0.1 found 167,000).
-  static constexpr std::size_t kMaxCachedStretches = 50000;
+  using StretchCache = SharedMemo<StretchKey, StretchWeights, StretchKeyHash, 50000>;
 
   static StretchKey key_of(const Stretch& t, double radius, double s_cut) {
     return {{t.far ? -radius : radius, t.axis.lo, t.axis.hi,
@@ -248,34 +239,12 @@ class EllipseLawIntegrator {
     const double P = ray.reference_radius(), r = ray.radius();
     thread_local std::vector<StretchKey> keys;
     thread_local std::vector<StretchWeights> found;
-    thread_local std::vector<char> known;
     const std::size_t n = stretches.size();
     keys.resize(n);
-    found.resize(n);
-    known.assign(n, 0);
-    {
-      std::lock_guard<std::mutex> lock(stretch_cache_->mutex);
-      for (std::size_t i = 0; i < n; ++i) {
-        keys[i] = key_of(stretches[i], stretches[i].far ? r : P, s_cut);
-        const auto it = stretch_cache_->weights.find(keys[i]);
-        if (it != stretch_cache_->weights.end()) {
-          found[i] = it->second;
-          known[i] = 1;
-        }
-      }
-    }
-    bool added = false;
     for (std::size_t i = 0; i < n; ++i)
-      if (!known[i]) {
-        found[i] = stretch_weights(stretches[i], P, r, s_cut);
-        added = true;
-      }
-    if (added) {
-      std::lock_guard<std::mutex> lock(stretch_cache_->mutex);
-      if (stretch_cache_->weights.size() > kMaxCachedStretches) stretch_cache_->weights.clear();
-      for (std::size_t i = 0; i < n; ++i)
-        if (!known[i]) stretch_cache_->weights.emplace(keys[i], found[i]);
-    }
+      keys[i] = key_of(stretches[i], stretches[i].far ? r : P, s_cut);
+    stretch_cache_->get(keys, found,
+                        [&](std::size_t i) { return stretch_weights(stretches[i], P, r, s_cut); });
     for (std::size_t i = 0; i < n; ++i)
       ray.add_weights(stretches[i].leaf, stretches[i].s1, found[i].data());
   }

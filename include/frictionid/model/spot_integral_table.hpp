@@ -119,6 +119,7 @@
 #include <frictionid/model/pressure_law.hpp>
 #include <frictionid/model/rect_strip_integrator.hpp>
 #include <frictionid/model/scalar_ops.hpp>
+#include <frictionid/model/shared_memo.hpp>
 #include <frictionid/model/spot_integrals.hpp>
 #include <frictionid/model/tanh_sinh_rule.hpp>
 
@@ -357,36 +358,25 @@ class SpotIntegralTable {
   // times fewer products (sum_piece at every point took a tenth of a build). A piece's sums
   // depend only on the piece and the angular coordinate, bit for bit, so the build does not
   // depend on which point found them first. Shared by the threads.
-  class AngleRows {
-   public:
-    std::size_t size() const {
-      std::lock_guard<std::mutex> lock(mutex_);
-      return rows_.size();
-    }
-
-   private:
-    friend class SpotIntegralTable;
-    struct Key {
-      int leaf;
-      double s1;
-      bool operator==(const Key& o) const { return leaf == o.leaf && s1 == o.s1; }
-    };
-    struct KeyHash {
-      std::size_t operator()(const Key& k) const {
-        const double s1 = k.s1 + 0.0;  // -0 and +0 compare equal: one hash
-        std::uint64_t b;
-        std::memcpy(&b, &s1, sizeof b);
-        std::uint64_t z = b ^ (static_cast<std::uint64_t>(k.leaf) * 0x9e3779b97f4a7c15ULL);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-        return static_cast<std::size_t>(z ^ (z >> 31));
-      }
-    };
-    // Cleared beyond this many (~30 MB at 17 x 12 coefficients each).
-    static constexpr std::size_t kMaxRows = 15000;
-    mutable std::mutex mutex_;
-    std::unordered_map<Key, std::shared_ptr<const std::vector<double>>, KeyHash> rows_;
+  struct AngleKey {
+    int leaf;
+    double s1;
+    bool operator==(const AngleKey& o) const { return leaf == o.leaf && s1 == o.s1; }
   };
+  struct AngleKeyHash {
+    std::size_t operator()(const AngleKey& k) const {
+      const double s1 = k.s1 + 0.0;  // -0 and +0 compare equal: one hash
+      std::uint64_t b;
+      std::memcpy(&b, &s1, sizeof b);
+      std::uint64_t z = b ^ (static_cast<std::uint64_t>(k.leaf) * 0x9e3779b97f4a7c15ULL);
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+      return static_cast<std::size_t>(z ^ (z >> 31));
+    }
+  };
+  // Cleared beyond 15,000 (~30 MB at 17 x 12 coefficients each).
+  using AngleRows =
+      SharedMemo<AngleKey, std::shared_ptr<const std::vector<double>>, AngleKeyHash, 15000>;
 
   // Readings along the ray c/s, s > 0, from one centre c: a table law's layers read the uniform
   // ellipse at c/s for 250-650 values of s (ellipse_law_integrator.hpp). On an ellipse's table
@@ -496,29 +486,15 @@ class SpotIntegralTable {
     // The same, each piece's coefficients first summed over its angular rows at the ray's
     // angle and kept in `rows` (AngleRows), where later rays at that angle find them.
     void add_to(double* acc, AngleRows& rows) const {
+      thread_local std::vector<AngleKey> keys;
       thread_local std::vector<std::shared_ptr<const std::vector<double>>> found;
       const std::size_t n = visits_.size();
-      found.assign(n, nullptr);
-      {
-        std::lock_guard<std::mutex> lock(rows.mutex_);
-        for (std::size_t i = 0; i < n; ++i) {
-          const auto it = rows.rows_.find({visits_[i].leaf, visits_[i].s1});
-          if (it != rows.rows_.end()) found[i] = it->second;
-        }
-      }
-      bool added = false;
-      for (std::size_t i = 0; i < n; ++i)
-        if (!found[i]) {
-          found[i] = std::make_shared<const std::vector<double>>(
-              reduce_piece(visits_[i].leaf, visits_[i].s1));
-          added = true;
-        }
-      if (added) {
-        std::lock_guard<std::mutex> lock(rows.mutex_);
-        if (rows.rows_.size() > AngleRows::kMaxRows) rows.rows_.clear();
-        for (std::size_t i = 0; i < n; ++i)
-          rows.rows_.emplace(AngleRows::Key{visits_[i].leaf, visits_[i].s1}, found[i]);
-      }
+      keys.resize(n);
+      for (std::size_t i = 0; i < n; ++i) keys[i] = {visits_[i].leaf, visits_[i].s1};
+      rows.get(keys, found, [&](std::size_t i) {
+        return std::make_shared<const std::vector<double>>(
+            reduce_piece(visits_[i].leaf, visits_[i].s1));
+      });
       double out[kChannels] = {};
       for (std::size_t i = 0; i < n; ++i) {
         const double* W = weights_.data() + visits_[i].offset;
